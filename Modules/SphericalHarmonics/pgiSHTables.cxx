@@ -1,0 +1,124 @@
+#include "pgiSHTables.h"
+
+#include "pgiSHZonal.h"
+
+#include <array>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+
+namespace proxygi
+{
+namespace sh
+{
+
+constexpr int CapTables::DefaultResolution;
+constexpr double CapTables::MaxAngle;
+
+namespace
+{
+// Cap log as a ZH (unscaled) via the eigen-inversion log of the full vector.
+void CapLogZonal(int order, double theta, const LogOptions& options, double* zh)
+{
+  double zv[MaxOrder], g[MaxCoefficients], f[MaxCoefficients];
+  CapVisibilityZonal(order, theta, zv);
+  Fill(g, NumCoefficients(order), 0.0);
+  for (int l = 0; l < order; ++l)
+  {
+    g[Index(l, 0)] = zv[l];
+  }
+  Log(order, g, f, options);
+  for (int l = 0; l < order; ++l)
+  {
+    zh[l] = f[Index(l, 0)];
+  }
+}
+} // namespace
+
+CapTables::CapTables(int order, int resolution, const LogOptions& log)
+  : Order(order)
+  , Resolution(resolution)
+{
+  if (order < 1 || order > MaxOrder)
+  {
+    throw std::invalid_argument("CapTables: order out of range");
+  }
+  if (resolution < 2)
+  {
+    throw std::invalid_argument("CapTables: resolution must be at least 2");
+  }
+  this->ThetaScale = (resolution - 1) / MaxAngle;
+  this->Visibility.resize(resolution * order);
+  this->LogD.resize(resolution * order);
+  double zv[MaxOrder], zf[MaxOrder];
+  for (int i = 0; i < resolution; ++i)
+  {
+    const double theta = MaxAngle * i / (resolution - 1);
+    CapVisibilityZonal(order, theta, zv);
+    CapLogZonal(order, theta, log, zf);
+    for (int l = 0; l < order; ++l)
+    {
+      this->Visibility[i * order + l] = zv[l] * ZonalScale(l);
+      this->LogD[i * order + l] = zf[l] * ZonalScale(l);
+    }
+  }
+  this->VisibilityF.assign(this->Visibility.begin(), this->Visibility.end());
+  this->LogF.assign(this->LogD.begin(), this->LogD.end());
+
+  // Optimal linear fit (eq. 24) on caps sampled finer than the output grid.
+  const int fitSamples = 4 * resolution;
+  std::vector<double> xs(1, 0.0), as(1, 1.0), bs(1, 1.0);
+  for (int i = 1; i < fitSamples; ++i)
+  {
+    const double theta = MaxAngle * i / (fitSamples - 1);
+    CapVisibilityZonal(order, theta, zv);
+    CapLogZonal(order, theta, log, zf);
+    // ZH vectors: the dot products over m reduce to l sums.
+    const double dc = std::exp(-zf[0] / SqrtFourPi);
+    double fHatSq = 0.0, gDotF = 0.0;
+    for (int l = 1; l < order; ++l)
+    {
+      fHatSq += zf[l] * zf[l];
+      gDotF += dc * zv[l] * zf[l];
+    }
+    const double x = std::sqrt(fHatSq);
+    if (!(x > xs.back()))
+    {
+      break; // keep the monotone part only
+    }
+    xs.push_back(x);
+    as.push_back(dc * zv[0] / SqrtFourPi);
+    bs.push_back(fHatSq > 0.0 ? gDotF / fHatSq : 1.0);
+  }
+  this->OLMaxNorm = xs.back();
+  this->OLScale = (resolution - 1) / this->OLMaxNorm;
+  this->OLA.resize(resolution);
+  this->OLB.resize(resolution);
+  std::size_t j = 0;
+  for (int i = 0; i < resolution; ++i)
+  {
+    const double x = this->OLMaxNorm * i / (resolution - 1);
+    while (j + 2 < xs.size() && xs[j + 1] < x)
+    {
+      ++j;
+    }
+    const double t = std::min(1.0, std::max(0.0, (x - xs[j]) / (xs[j + 1] - xs[j])));
+    this->OLA[i] = as[j] + (as[j + 1] - as[j]) * t;
+    this->OLB[i] = bs[j] + (bs[j + 1] - bs[j]) * t;
+  }
+}
+
+const CapTables& CapTables::Get(int order)
+{
+  if (order < 1 || order > MaxOrder)
+  {
+    throw std::invalid_argument("CapTables::Get: order out of range");
+  }
+  static std::array<std::unique_ptr<CapTables>, MaxOrder + 1> cache;
+  static std::array<std::once_flag, MaxOrder + 1> once;
+  std::call_once(once[order], [order]() { cache[order].reset(new CapTables(order)); });
+  return *cache[order];
+}
+
+} // namespace sh
+} // namespace proxygi

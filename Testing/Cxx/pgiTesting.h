@@ -1,0 +1,64 @@
+/**
+ * @file pgiTesting.h
+ * @brief Small checks for ProxyGI's VTK-style tests: each failed check prints
+ * what it compared and marks the test failed; the test returns Result().
+ */
+#ifndef pgiTesting_h
+#define pgiTesting_h
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace pgitest
+{
+inline int& Failures()
+{
+  static int count = 0;
+  return count;
+}
+inline int Result()
+{
+  if (Failures() != 0)
+  {
+    std::printf("%d check(s) failed\n", Failures());
+    return EXIT_FAILURE;
+  }
+  return EXIT_SUCCESS;
+}
+inline bool Check(bool ok, const char* what, const char* file, int line)
+{
+  if (!ok)
+  {
+    std::printf("FAILED %s:%d: %s\n", file, line, what);
+    ++Failures();
+  }
+  return ok;
+}
+inline bool Near(double a, double b, double tol, const char* what, const char* file, int line)
+{
+  const bool ok = std::fabs(a - b) <= tol; // false for NaN
+  if (!ok)
+  {
+    std::printf("FAILED %s:%d: %s: %.12g vs %.12g (tolerance %.3g)\n", file, line, what, a, b, tol);
+    ++Failures();
+  }
+  return ok;
+}
+inline bool Below(double a, double bound, const char* what, const char* file, int line)
+{
+  const bool ok = a <= bound;
+  if (!ok)
+  {
+    std::printf("FAILED %s:%d: %s: %.6g exceeds %.6g\n", file, line, what, a, bound);
+    ++Failures();
+  }
+  return ok;
+}
+} // namespace pgitest
+
+#define PGI_CHECK(cond) pgitest::Check((cond), #cond, __FILE__, __LINE__)
+#define PGI_NEAR(a, b, tol) pgitest::Near((a), (b), (tol), #a " vs " #b, __FILE__, __LINE__)
+#define PGI_BELOW(a, bound) pgitest::Below((a), (bound), #a, __FILE__, __LINE__)
+
+#endif
