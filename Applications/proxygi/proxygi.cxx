@@ -1,0 +1,153 @@
+// proxygi: the command-line front of ProxyGI. One program, one subcommand
+// per job; each prints what it did, how long it took and how far from the
+// reference it landed.
+#include "proxygiCommands.h"
+
+#include <vtkSMPTools.h>
+#include <vtkVersionMacros.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <unistd.h>
+
+namespace proxygi
+{
+namespace cli
+{
+
+std::string Option(const Args& args, const std::string& name, const std::string& fallback)
+{
+  for (std::size_t i = 0; i + 1 < args.size(); ++i)
+  {
+    if (args[i] == name)
+    {
+      return args[i + 1];
+    }
+  }
+  return fallback;
+}
+
+double NumberOption(const Args& args, const std::string& name, double fallback, bool& ok)
+{
+  const std::string text = Option(args, name, "");
+  if (text.empty())
+  {
+    return fallback;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (errno != 0 || end == text.c_str() || *end != '\0')
+  {
+    std::fprintf(stderr, "proxygi: %s expects a number, got '%s'\n", name.c_str(), text.c_str());
+    ok = false;
+  }
+  return v;
+}
+
+bool Flag(const Args& args, const std::string& name)
+{
+  for (const std::string& a : args)
+  {
+    if (a == name)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+} // namespace cli
+} // namespace proxygi
+
+namespace
+{
+const char* Usage = R"(usage: proxygi <command> [options]
+
+Commands:
+  render     Render a scene with SH soft shadows; write the image, print time
+             and error. Without a scene file: the built-in analytic scene (a
+             sphere over a plane under uniform sky), compared with its closed
+             form. Run 'proxygi render --help'.
+  sh         Spherical-harmonics tools: cap visibility and log-visibility,
+             exp round trips per method, projection of test functions.
+             Run 'proxygi sh --help'.
+  bench      Run the Google Benchmark programs (accuracy counters included);
+             arguments go to the benchmark program.
+  proxies    Sphere proxies of a mesh            (not built yet: issue #3)
+  reference  Embree path-traced ground truth     (not built yet: issue #4)
+
+  proxygi --help | --version
+)";
+
+int RunBench(const char* self, const proxygi::cli::Args& args)
+{
+  // The benchmark program sits next to this one in the build's bin folder.
+  std::string path = self;
+  const std::size_t slash = path.rfind('/');
+  path = (slash == std::string::npos ? std::string(".") : path.substr(0, slash)) + "/ProxyGIBenchSH";
+  if (access(path.c_str(), X_OK) != 0)
+  {
+    std::fprintf(stderr, "proxygi bench: %s not found (configure with PROXYGI_BUILD_BENCHMARKS=ON)\n",
+      path.c_str());
+    return 1;
+  }
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(path.c_str()));
+  for (const std::string& a : args)
+  {
+    argv.push_back(const_cast<char*>(a.c_str()));
+  }
+  argv.push_back(nullptr);
+  execv(path.c_str(), argv.data());
+  std::fprintf(stderr, "proxygi bench: cannot run %s: %s\n", path.c_str(), std::strerror(errno));
+  return 1;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") ||
+    !std::strcmp(argv[1], "help"))
+  {
+    std::fputs(Usage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 1, 0)
+  // Debian's VTK defaults to the sequential SMP backend; use the threads
+  // unless the user chose one (VTK_SMP_BACKEND_IN_USE).
+  if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
+  {
+    vtkSMPTools::SetBackend("STDThread");
+  }
+#endif
+  const std::string command = argv[1];
+  const proxygi::cli::Args args(argv + 2, argv + argc);
+  if (command == "--version")
+  {
+    std::printf("proxygi 0.1.0\n");
+    return 0;
+  }
+  if (command == "render")
+  {
+    return proxygi::cli::RunRender(args);
+  }
+  if (command == "sh")
+  {
+    return proxygi::cli::RunSH(args);
+  }
+  if (command == "bench")
+  {
+    return RunBench(argv[0], args);
+  }
+  if (command == "proxies" || command == "reference")
+  {
+    std::fprintf(stderr, "proxygi %s: not built yet (see 'proxygi --help')\n", command.c_str());
+    return 2;
+  }
+  std::fprintf(stderr, "proxygi: unknown command '%s'\n\n%s", command.c_str(), Usage);
+  return 2;
+}

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Runs the benchmarks (with their accuracy counters) and rewrites the
+# generated tables of Documentation/AccuracyTime.md. Not part of the tests.
+#   Utilities/run_benchmarks.sh [build-dir]
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${1:-${PROXYGI_BUILD_DIR:-$here/build}}"
+out="$build/bench"
+mkdir -p "$out"
+"$build/bin/ProxyGIBenchSH" --benchmark_min_time=0.2 --benchmark_repetitions=3 \
+  --benchmark_report_aggregates_only=true \
+  --benchmark_out="$out/sh.json" --benchmark_out_format=json
+python3 "$here/Utilities/bench_report.py" "$out/sh.json" "$here/Documentation/AccuracyTime.md"
