@@ -119,8 +119,8 @@ void BenchAccumulateLog(benchmark::State& state, int order)
     for (const Cap& c : caps)
     {
       tables.CapLog(static_cast<float>(c.HalfAngle), zh);
-      RotateScaledZonal(order, zh, float(c.Direction[0]), float(c.Direction[1]),
-        float(c.Direction[2]), v);
+      RotateScaledZonal(
+        order, zh, float(c.Direction[0]), float(c.Direction[1]), float(c.Direction[2]), v);
       for (int i = 0; i < n2; ++i)
       {
         sum[i] += v[i];
@@ -145,8 +145,8 @@ void BenchAccumulateProduct(benchmark::State& state, int order)
     for (const Cap& c : caps)
     {
       tables.CapVisibility(static_cast<float>(c.HalfAngle), zh);
-      RotateScaledZonal(order, zh, float(c.Direction[0]), float(c.Direction[1]),
-        float(c.Direction[2]), v);
+      RotateScaledZonal(
+        order, zh, float(c.Direction[0]), float(c.Direction[1]), float(c.Direction[2]), v);
       tp.Product(acc, v, tmp);
       std::copy(tmp, tmp + n2, acc);
     }
@@ -214,8 +214,8 @@ int main(int argc, char** argv)
   {
     for (const Variant& v : Variants())
     {
-      benchmark::RegisterBenchmark(("Exp/" + v.Name + "/order:" + std::to_string(order)).c_str(),
-        BenchExp, order, v.Options);
+      benchmark::RegisterBenchmark(
+        ("Exp/" + v.Name + "/order:" + std::to_string(order)).c_str(), BenchExp, order, v.Options);
     }
     benchmark::RegisterBenchmark(
       ("AccumulateLog/order:" + std::to_string(order)).c_str(), BenchAccumulateLog, order);

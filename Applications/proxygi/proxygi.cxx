@@ -88,11 +88,12 @@ int RunBench(const char* self, const proxygi::cli::Args& args)
   // The benchmark program sits next to this one in the build's bin folder.
   std::string path = self;
   const std::size_t slash = path.rfind('/');
-  path = (slash == std::string::npos ? std::string(".") : path.substr(0, slash)) + "/ProxyGIBenchSH";
+  path =
+    (slash == std::string::npos ? std::string(".") : path.substr(0, slash)) + "/ProxyGIBenchSH";
   if (access(path.c_str(), X_OK) != 0)
   {
-    std::fprintf(stderr, "proxygi bench: %s not found (configure with PROXYGI_BUILD_BENCHMARKS=ON)\n",
-      path.c_str());
+    std::fprintf(stderr,
+      "proxygi bench: %s not found (configure with PROXYGI_BUILD_BENCHMARKS=ON)\n", path.c_str());
     return 1;
   }
   std::vector<char*> argv;

@@ -220,8 +220,8 @@ int RunRender(const Args& args)
   std::printf("wrote %s\n", output.c_str());
   if (failures > 0)
   {
-    std::fprintf(stderr, "proxygi render: %d receivers reported non-finite SH input\n",
-      failures.load());
+    std::fprintf(
+      stderr, "proxygi render: %d receivers reported non-finite SH input\n", failures.load());
     return 1;
   }
   return 0;

@@ -121,7 +121,8 @@ int RunSH(const Args& args)
     ExpMethod Method;
     int Degree;
   } methods[] = { { "PS-2", ExpMethod::PS, 2 }, { "PS-4", ExpMethod::PS, 4 },
-    { "PS*-2", ExpMethod::PSStar, 2 }, { "OL", ExpMethod::OL, 0 }, { "HYB", ExpMethod::Hybrid, 0 } };
+    { "PS*-2", ExpMethod::PSStar, 2 }, { "OL", ExpMethod::OL, 0 },
+    { "HYB", ExpMethod::Hybrid, 0 } };
   for (const auto& m : methods)
   {
     ExpOptions o;

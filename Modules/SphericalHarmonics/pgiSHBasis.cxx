@@ -73,8 +73,8 @@ template <typename T>
 void EvaluateBasisPolynomial(int order, T x, T y, T z, T* out)
 #include "pgiSHBasisPolynomials.inl"
 
-template <typename T>
-void EvaluateBasisRecurrence(int order, T x, T y, T z, T* out)
+  template <typename T>
+  void EvaluateBasisRecurrence(int order, T x, T y, T z, T* out)
 {
   const auto& K = Normalization().K;
   // Re/Im of (x + i y)^m: sin^m(theta) cos/sin(m phi).
@@ -100,8 +100,7 @@ void EvaluateBasisRecurrence(int order, T x, T y, T z, T* out)
       }
       else if (l > m + 1)
       {
-        const T pNext =
-          (static_cast<T>(2 * l - 1) * z * pCur - static_cast<T>(l + m - 1) * pPrev) /
+        const T pNext = (static_cast<T>(2 * l - 1) * z * pCur - static_cast<T>(l + m - 1) * pPrev) /
           static_cast<T>(l - m);
         pPrev = pCur;
         pCur = pNext;

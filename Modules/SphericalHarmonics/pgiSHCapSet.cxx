@@ -23,8 +23,8 @@ void AccumulateLog(const CapTables& tables, const std::vector<Cap>& caps, T* log
   for (const Cap& cap : caps)
   {
     tables.CapLog(static_cast<T>(cap.HalfAngle), zh);
-    RotateScaledZonal(order, zh, static_cast<T>(cap.Direction[0]),
-      static_cast<T>(cap.Direction[1]), static_cast<T>(cap.Direction[2]), v);
+    RotateScaledZonal(order, zh, static_cast<T>(cap.Direction[0]), static_cast<T>(cap.Direction[1]),
+      static_cast<T>(cap.Direction[2]), v);
     for (int i = 0; i < n2; ++i)
     {
       logSum[i] += v[i];

@@ -5,9 +5,10 @@
  * | method  | what it does                                              | products |
  * |---------|-----------------------------------------------------------|----------|
  * | PS      | product series 1 + f + f^2/2 + ... + f^p/p! (PS-p)        | p - 1    |
- * | PSStar  | DC isolation, scaling by 2^-s with s = max(0, floor(log2 |f^| + 3)), even/odd factored degree-p series, s squarings (PS*-p) | about p/2 + s |
- * | OL      | DC isolation, a(|f^|) 1 + b(|f^|) f^ from the CapTables fit | 0      |
- * | Hybrid  | OL after scaling |f^| below HybridMaxNorm, then squarings (HYB) | s  |
+ * | PSStar  | DC isolation, scaling by 2^-s with s = max(0, floor(log2 |f^| + 3)), even/odd
+ * factored degree-p series, s squarings (PS*-p) | about p/2 + s | | OL      | DC isolation, a(|f^|)
+ * 1 + b(|f^|) f^ from the CapTables fit | 0      | | Hybrid  | OL after scaling |f^| below
+ * HybridMaxNorm, then squarings (HYB) | s  |
  *
  * f^ is f with its DC coefficient removed; exp(f_0 / sqrt(4 pi)) is applied
  * analytically. Order 1..MaxOrder; float and double.

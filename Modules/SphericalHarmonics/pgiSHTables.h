@@ -94,8 +94,7 @@ private:
 };
 
 template <typename T, typename Table>
-inline void CapTables::Lookup(
-  const std::vector<float>& tf, const Table& td, T theta, T* out) const
+inline void CapTables::Lookup(const std::vector<float>& tf, const Table& td, T theta, T* out) const
 {
   T u = theta * static_cast<T>(this->ThetaScale);
   const int last = this->Resolution - 1;

@@ -227,8 +227,8 @@ void TripleProduct::ProductMatrix(const T* f, T* matrix) const
 }
 
 #define PGI_INSTANTIATE(T)                                                                         \
-  template PROXYGISPHERICALHARMONICS_EXPORT void TripleProduct::Product<T>(                        \
-    const T*, const T*, T*) const;                                                                 \
+  template PROXYGISPHERICALHARMONICS_EXPORT void TripleProduct::Product<T>(const T*, const T*, T*) \
+    const;                                                                                         \
   template PROXYGISPHERICALHARMONICS_EXPORT void TripleProduct::Square<T>(const T*, T*) const;     \
   template PROXYGISPHERICALHARMONICS_EXPORT void TripleProduct::ProductMatrix<T>(const T*, T*)     \
     const;

@@ -142,8 +142,7 @@ void Window(int order, T* f, double h)
 
 #define PGI_INSTANTIATE(T)                                                                         \
   template PROXYGISPHERICALHARMONICS_EXPORT void RotateZonal<T>(int, const T*, T, T, T, T*);       \
-  template PROXYGISPHERICALHARMONICS_EXPORT void RotateScaledZonal<T>(                             \
-    int, const T*, T, T, T, T*);                                                                   \
+  template PROXYGISPHERICALHARMONICS_EXPORT void RotateScaledZonal<T>(int, const T*, T, T, T, T*); \
   template PROXYGISPHERICALHARMONICS_EXPORT void DiffuseTransfer<T>(int, T, T, T, T*);             \
   template PROXYGISPHERICALHARMONICS_EXPORT void Window<T>(int, T*, double);
 PGI_INSTANTIATE(float)

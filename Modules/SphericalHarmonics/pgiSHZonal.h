@@ -25,8 +25,7 @@ inline double ZonalScale(int l)
  * out_lm = sqrt(4 pi / (2l+1)) zh_l y_lm(d). zh holds `order` values.
  */
 template <typename T>
-PROXYGISPHERICALHARMONICS_EXPORT void RotateZonal(
-  int order, const T* zh, T dx, T dy, T dz, T* out);
+PROXYGISPHERICALHARMONICS_EXPORT void RotateZonal(int order, const T* zh, T dx, T dy, T dz, T* out);
 
 /// Same, with zh already multiplied by ZonalScale(l) (what tables store).
 template <typename T>

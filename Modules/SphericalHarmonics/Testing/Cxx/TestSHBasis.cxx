@@ -97,7 +97,8 @@ int TestSHBasis(int, char*[])
       c = normal(rng);
     }
     Project(
-      order, [&](double x, double yy, double z) { return Reconstruct(order, coeffs.data(), x, yy, z); },
+      order,
+      [&](double x, double yy, double z) { return Reconstruct(order, coeffs.data(), x, yy, z); },
       SphereQuadrature::ForDegree(2 * (order - 1)), back.data());
     double worst = 0.0;
     for (int i = 0; i < n2; ++i)

@@ -189,7 +189,8 @@ int TestSHHardCases(int, char*[])
       {
         double f[16] = { 0 }, g[16];
         f[where] = bad;
-        for (ExpMethod method : { ExpMethod::PS, ExpMethod::PSStar, ExpMethod::OL, ExpMethod::Hybrid })
+        for (ExpMethod method :
+          { ExpMethod::PS, ExpMethod::PSStar, ExpMethod::OL, ExpMethod::Hybrid })
         {
           ExpOptions o;
           o.Method = method;

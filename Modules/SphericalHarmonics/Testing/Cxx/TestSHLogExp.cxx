@@ -109,7 +109,8 @@ int TestSHLogExp(int, char*[])
     Exp(order, f, e, accurate);
     Exp(order, fn, en, accurate);
     const double eig = RmsDifference(order, e, g), naive = RmsDifference(order, en, g);
-    std::printf("40-degree cap round trip: eigen-inversion %.5f, naive projection %.5f\n", eig, naive);
+    std::printf(
+      "40-degree cap round trip: eigen-inversion %.5f, naive projection %.5f\n", eig, naive);
     PGI_CHECK(eig < 0.5 * naive);
   }
 
@@ -136,8 +137,8 @@ int TestSHLogExp(int, char*[])
     double productErr = 0.0, norm = 0.0;
     for (int t = 0; t < trials; ++t)
     {
-      const std::vector<Cap> caps = RandomCaps(1000 * set.Count + t, set.Count, set.MinAngle,
-        set.MaxAngle);
+      const std::vector<Cap> caps =
+        RandomCaps(1000 * set.Count + t, set.Count, set.MinAngle, set.MaxAngle);
       double exact[16], product[16], f[16], g[16];
       ProjectExactVisibility(order, caps, exact, 160);
       AccumulateProduct(order, caps, product);

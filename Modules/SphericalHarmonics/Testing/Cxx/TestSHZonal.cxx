@@ -22,7 +22,8 @@ int TestSHZonal(int, char*[])
     const int n2 = NumCoefficients(order);
     const SphereQuadrature rule = SphereQuadrature::ForDegree(3 + order - 1);
     std::vector<double> full(n2), rotated(n2), direct(n2);
-    Project(order, [&](double, double, double z) { return h(z); }, rule, full.data());
+    Project(
+      order, [&](double, double, double z) { return h(z); }, rule, full.data());
     std::vector<double> zh(order);
     for (int l = 0; l < order; ++l)
     {
@@ -45,7 +46,8 @@ int TestSHZonal(int, char*[])
         c /= len;
       }
       RotateZonal(order, zh.data(), d[0], d[1], d[2], rotated.data());
-      Project(order, [&](double x, double y, double z) { return h(x * d[0] + y * d[1] + z * d[2]); },
+      Project(
+        order, [&](double x, double y, double z) { return h(x * d[0] + y * d[1] + z * d[2]); },
         rule, direct.data());
       for (int i = 0; i < n2; ++i)
       {
@@ -120,7 +122,8 @@ int TestSHZonal(int, char*[])
   {
     const int order = 3;
     double light[9], cc3[3];
-    Project(order, [](double, double, double z) { return std::max(z, 0.0); }, SphereQuadrature(64),
+    Project(
+      order, [](double, double, double z) { return std::max(z, 0.0); }, SphereQuadrature(64),
       light);
     ClampedCosineZonal(order, cc3);
     ConvolveZonal(order, cc3, light);
