@@ -1,0 +1,142 @@
+// OpenEXR in and out: exact round trip, and clear errors for missing files,
+// wrong channel layouts, non-2:1 sizes; NaN/Inf texels are clamped and counted.
+#include "vtkPGIEXRReader.h"
+#include "vtkPGIEXRWriter.h"
+
+#include "pgiTesting.h"
+#include "vtkExecutive.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkTestErrorObserver.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+
+#include <limits>
+#include <random>
+
+namespace
+{
+vtkSmartPointer<vtkImageData> MakeImage(int w, int h, unsigned seed)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(w, h, 1);
+  vtkNew<vtkFloatArray> a;
+  a->SetNumberOfComponents(3);
+  a->SetNumberOfTuples(w * h);
+  std::mt19937 rng(seed);
+  std::lognormal_distribution<float> dist(0.0f, 3.0f);
+  for (vtkIdType i = 0; i < 3 * w * h; ++i)
+  {
+    a->SetValue(i, dist(rng));
+  }
+  image->GetPointData()->SetScalars(a);
+  return image;
+}
+
+bool ReadFails(vtkPGIEXRReader* reader)
+{
+  vtkNew<vtkTest::ErrorObserver> observer;
+  reader->AddObserver(vtkCommand::ErrorEvent, observer);
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+  reader->Modified();
+  reader->Update();
+  return observer->GetError();
+}
+} // namespace
+
+int TestEXRFiles(int, char*[])
+{
+  // Round trip: bit-exact floats, rows in the same order.
+  auto image = MakeImage(64, 32, 1);
+  vtkNew<vtkPGIEXRWriter> writer;
+  writer->SetFileName("/tmp/pgi-roundtrip.exr");
+  writer->SetInputData(image);
+  PGI_CHECK(writer->Write());
+  vtkNew<vtkPGIEXRReader> reader;
+  reader->SetFileName("/tmp/pgi-roundtrip.exr");
+  reader->Update();
+  vtkDataArray* back = reader->GetOutput()->GetPointData()->GetScalars();
+  PGI_CHECK(back && back->GetNumberOfTuples() == 64 * 32);
+  if (back)
+  {
+    double worst = 0.0;
+    vtkDataArray* orig = image->GetPointData()->GetScalars();
+    for (vtkIdType i = 0; i < 64 * 32; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        worst = std::max(worst, std::fabs(back->GetComponent(i, c) - orig->GetComponent(i, c)));
+      }
+    }
+    PGI_CHECK(worst == 0.0);
+  }
+
+  // Missing file.
+  reader->SetFileName("/nonexistent/sky.exr");
+  PGI_CHECK(ReadFails(reader));
+
+  // Not 2:1: an error for a lat-long map, fine as a plain image.
+  writer->SetFileName("/tmp/pgi-3x2.exr");
+  writer->SetInputData(MakeImage(30, 20, 2));
+  PGI_CHECK(writer->Write());
+  reader->SetFileName("/tmp/pgi-3x2.exr");
+  PGI_CHECK(ReadFails(reader));
+  reader->LatLongOff();
+  PGI_CHECK(!ReadFails(reader));
+  reader->LatLongOn();
+
+  // No R, G, B channels (a luminance-only file).
+  {
+    Imf::Header header(8, 4);
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    std::vector<float> y(32, 1.0f);
+    Imf::FrameBuffer frame;
+    frame.insert("Y",
+      Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(y.data()), sizeof(float), 8 * sizeof(float)));
+    Imf::OutputFile file("/tmp/pgi-y.exr", header);
+    file.setFrameBuffer(frame);
+    file.writePixels(4);
+  }
+  reader->SetFileName("/tmp/pgi-y.exr");
+  PGI_CHECK(ReadFails(reader));
+
+  // NaN, Inf and negative texels: clamped, counted, warned about.
+  {
+    auto bad = MakeImage(16, 8, 3);
+    vtkDataArray* a = bad->GetPointData()->GetScalars();
+    a->SetComponent(0, 0, std::numeric_limits<double>::quiet_NaN());
+    a->SetComponent(5, 1, std::numeric_limits<double>::infinity());
+    a->SetComponent(9, 2, -3.0);
+    writer->SetFileName("/tmp/pgi-bad.exr");
+    writer->SetInputData(bad);
+    PGI_CHECK(writer->Write());
+    vtkNew<vtkTest::ErrorObserver> observer;
+    reader->AddObserver(vtkCommand::WarningEvent, observer);
+    reader->SetFileName("/tmp/pgi-bad.exr");
+    reader->Update();
+    PGI_CHECK(reader->GetNumberOfClampedValues() == 3);
+    PGI_CHECK(observer->GetWarning());
+    vtkDataArray* r = reader->GetOutput()->GetPointData()->GetScalars();
+    PGI_NEAR(r->GetComponent(0, 0), 0.0, 0.0);
+    PGI_NEAR(r->GetComponent(5, 1), 65504.0, 0.0);
+    PGI_NEAR(r->GetComponent(9, 2), 0.0, 0.0);
+  }
+
+  // The writer refuses what is not an RGB image.
+  {
+    vtkNew<vtkImageData> empty;
+    vtkNew<vtkTest::ErrorObserver> observer;
+    vtkNew<vtkPGIEXRWriter> w;
+    w->AddObserver(vtkCommand::ErrorEvent, observer);
+    w->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+    w->SetFileName("/tmp/pgi-empty.exr");
+    w->SetInputData(empty);
+    PGI_CHECK(!w->Write());
+  }
+  return pgitest::Result();
+}
