@@ -1,0 +1,131 @@
+// The reference renderer against closed forms: irradiance on a plane under
+// a sphere in uniform unit light, E = pi (1 - (r/d)^2 cos(beta)), swept over
+// receivers; the error falls as 1/sqrt(samples); the reported standard
+// error is honest (the error stays within a few of them).
+#include "pgiEnvironmentMap.h"
+#include "pgiReferenceTracer.h"
+#include "pgiTesting.h"
+
+#include <cmath>
+#include <vector>
+
+using namespace proxygi;
+
+namespace
+{
+const double Pi = 3.14159265358979323846;
+
+struct Fixture
+{
+  EnvironmentMap Sky = EnvironmentMap::Uniform(1.0f, 1.0f, 1.0f);
+  ReferenceTracer Tracer;
+  double Center[3] = { 0.0, 0.0, 1.5 }, Radius = 1.0;
+  Fixture()
+  {
+    // Exact sphere (Embree's sphere primitive) over a large plane.
+    std::string error;
+    const float albedo[3] = { 0.8f, 0.8f, 0.8f };
+    Tracer.AddSphere(Center, Radius, albedo, error);
+    const std::vector<float> plane = { -100, -100, 0, 100, -100, 0, 100, 100, 0, -100, 100, 0 };
+    Tracer.AddMesh(plane, { 0, 1, 2, 0, 2, 3 }, nullptr, albedo, error);
+    Tracer.SetEnvironment(&Sky);
+    Tracer.Commit(error);
+  }
+  double Exact(const double x[3]) const
+  {
+    const double d[3] = { Center[0] - x[0], Center[1] - x[1], Center[2] - x[2] };
+    const double dist2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    const double cosBeta = d[2] / std::sqrt(dist2);
+    return Pi * (1.0 - Radius * Radius / dist2 * cosBeta);
+  }
+};
+} // namespace
+
+int TestReferenceAnalytic(int, char*[])
+{
+  Fixture f;
+  const double n[3] = { 0, 0, 1 };
+  ReferenceTracer::Settings settings;
+  settings.MaxBounces = 0; // the closed form is direct light only
+  settings.Samples = 16384;
+
+  // Sweep receivers from under the sphere outwards.
+  double sumSq = 0.0, sumRef = 0.0, worstSigmas = 0.0;
+  const int count = 24;
+  for (int i = 0; i < count; ++i)
+  {
+    const double x[3] = { 0.25 * i, 0.1 * i, 0.0 };
+    ReferenceTracer::Estimate e;
+    f.Tracer.EstimateIrradiance(x, n, i, settings, e);
+    const double exact = f.Exact(x);
+    const double err = e.Direct[0] - exact;
+    sumSq += err * err;
+    sumRef += exact * exact;
+    worstSigmas = std::max(worstSigmas, std::fabs(err) / std::max(e.DirectStdErr[0], 1e-12));
+    PGI_NEAR(e.Direct[1], e.Direct[0], 1e-12); // grey light, grey result
+  }
+  const double relRmse = std::sqrt(sumSq / sumRef);
+  std::printf("sphere over plane, 16384 samples: relative RMSE %.4f%%, worst error %.2f sigma\n",
+    100 * relRmse, worstSigmas);
+  PGI_BELOW(relRmse, 5e-3);
+  PGI_BELOW(worstSigmas, 4.5);
+
+  // Convergence: error ~ 1/sqrt(samples).
+  std::vector<double> spp = { 16, 64, 256, 1024 }, rmse;
+  for (double s : spp)
+  {
+    settings.Samples = static_cast<int>(s);
+    double sq = 0.0, ref = 0.0;
+    for (int i = 0; i < 200; ++i)
+    {
+      const double x[3] = { 0.03 * i - 3.0, 0.5 * std::sin(0.1 * i), 0.0 };
+      ReferenceTracer::Estimate e;
+      f.Tracer.EstimateIrradiance(x, n, 1000 + i, settings, e);
+      const double exact = f.Exact(x);
+      sq += (e.Direct[0] - exact) * (e.Direct[0] - exact);
+      ref += exact * exact;
+    }
+    rmse.push_back(std::sqrt(sq / ref));
+    std::printf("  %4d samples: relative RMSE %.5f\n", settings.Samples, rmse.back());
+  }
+  // Least-squares slope of log(error) against log(samples).
+  double mx = 0, my = 0;
+  for (std::size_t k = 0; k < spp.size(); ++k)
+  {
+    mx += std::log(spp[k]) / spp.size();
+    my += std::log(rmse[k]) / spp.size();
+  }
+  double sxy = 0, sxx = 0;
+  for (std::size_t k = 0; k < spp.size(); ++k)
+  {
+    sxy += (std::log(spp[k]) - mx) * (std::log(rmse[k]) - my);
+    sxx += (std::log(spp[k]) - mx) * (std::log(spp[k]) - mx);
+  }
+  const double slope = sxy / sxx;
+  std::printf("convergence slope %.3f (1/sqrt(N) is -0.5)\n", slope);
+  PGI_NEAR(slope, -0.5, 0.1);
+
+  // Scale invariance: the same scene at 1e-4 and 1e4 gives the same numbers.
+  for (double scale : { 1e-4, 1e4 })
+  {
+    EnvironmentMap sky = EnvironmentMap::Uniform(1, 1, 1);
+    ReferenceTracer tracer;
+    std::string error;
+    const float albedo[3] = { 0.8f, 0.8f, 0.8f };
+    const double c[3] = { 0, 0, 1.5 * scale };
+    tracer.AddSphere(c, scale, albedo, error);
+    const float s = static_cast<float>(100 * scale);
+    tracer.AddMesh(
+      { -s, -s, 0, s, -s, 0, s, s, 0, -s, s, 0 }, { 0, 1, 2, 0, 2, 3 }, nullptr, albedo, error);
+    tracer.SetEnvironment(&sky);
+    PGI_CHECK(tracer.Commit(error));
+    settings.Samples = 256;
+    ReferenceTracer::Estimate a, b;
+    const double xs[3] = { 0.7 * scale, 0.2 * scale, 0.0 }, x1[3] = { 0.7, 0.2, 0.0 };
+    tracer.EstimateIrradiance(xs, n, 5, settings, a);
+    f.Tracer.EstimateIrradiance(x1, n, 5, settings, b);
+    std::printf("scale %g: E = %.6f vs %.6f at scale 1\n", scale, a.Direct[0], b.Direct[0]);
+    PGI_NEAR(a.Direct[0], b.Direct[0], 1e-3 * b.Direct[0]);
+  }
+  return pgitest::Result();
+}

@@ -1,0 +1,108 @@
+#include "pgiReferenceScene.h"
+
+#include "vtkDataArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkTriangleFilter.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <cmath>
+#include <vector>
+
+namespace proxygi
+{
+
+void AlbedoOf(vtkPolyData* mesh, const char* albedoArray, vtkIdType id,
+  const double defaultAlbedo[3], double rgb[3])
+{
+  vtkDataArray* array = albedoArray && mesh ? mesh->GetPointData()->GetArray(albedoArray) : nullptr;
+  if (!array || array->GetNumberOfComponents() < 3 || id >= array->GetNumberOfTuples())
+  {
+    std::copy(defaultAlbedo, defaultAlbedo + 3, rgb);
+    return;
+  }
+  const double scale = vtkUnsignedCharArray::SafeDownCast(array) ? 1.0 / 255.0 : 1.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double v = array->GetComponent(id, k) * scale;
+    rgb[k] = std::isfinite(v) ? std::min(1.0, std::max(0.0, v)) : 0.0;
+  }
+}
+
+bool AddPolyData(ReferenceTracer& tracer, vtkPolyData* mesh, const double defaultAlbedo[3],
+  const char* albedoArray, std::string& error)
+{
+  if (!mesh || mesh->GetNumberOfPoints() == 0)
+  {
+    return true; // nothing to add
+  }
+  vtkNew<vtkTriangleFilter> triangulate;
+  triangulate->SetInputData(mesh);
+  triangulate->PassVertsOff();
+  triangulate->PassLinesOff();
+  triangulate->Update();
+  vtkPolyData* tris = triangulate->GetOutput();
+  const vtkIdType np = tris->GetNumberOfPoints();
+  std::vector<float> points(3 * np), albedo(3 * np);
+  const bool perVertex = albedoArray && tris->GetPointData()->GetArray(albedoArray);
+  for (vtkIdType i = 0; i < np; ++i)
+  {
+    double p[3], a[3];
+    tris->GetPoint(i, p);
+    AlbedoOf(tris, albedoArray, i, defaultAlbedo, a);
+    for (int k = 0; k < 3; ++k)
+    {
+      points[3 * i + k] = static_cast<float>(p[k]);
+      albedo[3 * i + k] = static_cast<float>(a[k]);
+    }
+  }
+  std::vector<unsigned> triangles;
+  triangles.reserve(3 * tris->GetNumberOfPolys());
+  vtkCellArray* polys = tris->GetPolys();
+  vtkIdType npts;
+  const vtkIdType* ids;
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+  {
+    if (npts == 3)
+    {
+      triangles.insert(triangles.end(),
+        { static_cast<unsigned>(ids[0]), static_cast<unsigned>(ids[1]),
+          static_cast<unsigned>(ids[2]) });
+    }
+  }
+  const float object[3] = { static_cast<float>(defaultAlbedo[0]),
+    static_cast<float>(defaultAlbedo[1]), static_cast<float>(defaultAlbedo[2]) };
+  return tracer.AddMesh(points, triangles, perVertex ? albedo.data() : nullptr, object, error);
+}
+
+bool AddProxySpheres(ReferenceTracer& tracer, vtkPolyData* proxies, const double defaultAlbedo[3],
+  const char* albedoArray, std::string& error)
+{
+  if (!proxies || proxies->GetNumberOfPoints() == 0)
+  {
+    return true;
+  }
+  vtkDataArray* radius = proxies->GetPointData()->GetArray("Radius");
+  if (!radius)
+  {
+    error = "proxies need a \"Radius\" point array";
+    return false;
+  }
+  for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
+  {
+    double c[3], a[3];
+    proxies->GetPoint(i, c);
+    AlbedoOf(proxies, albedoArray, i, defaultAlbedo, a);
+    const float af[3] = { static_cast<float>(a[0]), static_cast<float>(a[1]),
+      static_cast<float>(a[2]) };
+    if (!tracer.AddSphere(c, radius->GetTuple1(i), af, error))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+} // namespace proxygi

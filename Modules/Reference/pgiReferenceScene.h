@@ -1,0 +1,36 @@
+/**
+ * @file pgiReferenceScene.h
+ * @brief Feeding VTK data to the ReferenceTracer (shared by the per-vertex
+ * filter and the per-pixel image source). Private to the module.
+ */
+#ifndef pgiReferenceScene_h
+#define pgiReferenceScene_h
+
+#include "pgiReferenceTracer.h"
+
+#include "vtkType.h"
+
+#include <string>
+
+class vtkPolyData;
+
+namespace proxygi
+{
+/**
+ * Adds a vtkPolyData's polygons (triangulated) to the tracer. Albedo: the
+ * named point array (3 components; unsigned char is read as 0..255) or the
+ * default.
+ */
+bool AddPolyData(ReferenceTracer& tracer, vtkPolyData* mesh, const double defaultAlbedo[3],
+  const char* albedoArray, std::string& error);
+
+/// Adds proxy spheres: points with a "Radius" point array.
+bool AddProxySpheres(ReferenceTracer& tracer, vtkPolyData* proxies, const double defaultAlbedo[3],
+  const char* albedoArray, std::string& error);
+
+/// Reads albedo of point `id` from the array (or the default) into rgb.
+void AlbedoOf(vtkPolyData* mesh, const char* albedoArray, vtkIdType id,
+  const double defaultAlbedo[3], double rgb[3]);
+} // namespace proxygi
+
+#endif

@@ -1,0 +1,110 @@
+/**
+ * @file pgiReferenceTracer.h
+ * @brief Monte Carlo ground truth for diffuse scenes on Embree.
+ *
+ * Geometry: triangle meshes (per-vertex or per-object albedo) and spheres
+ * (the proxies, to split proxy-geometry error from SH error). Light: an
+ * environment map (importance sampled, combined with cosine sampling by the
+ * balance heuristic), spherical area lights (sampled by solid angle; they
+ * emit but do not block) and point lights.
+ *
+ * Estimates at a surface point x with normal n, per sample:
+ *  - direct: E_d = int L(w) V(x, w) max(n.w, 0) dw over all lights;
+ *  - indirect: one cosine-sampled ray; at its hit y the exit radiance
+ *    rho(y)/pi (E_d(y) + further bounces up to MaxBounces) times pi.
+ * Exit radiance = albedo(x)/pi E. Every receiver draws from its own seeded
+ * random stream, so results do not depend on threading. The standard error
+ * of each estimate is returned with it.
+ */
+#ifndef pgiReferenceTracer_h
+#define pgiReferenceTracer_h
+
+#include "ProxyGIReferenceModule.h"
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace proxygi
+{
+class EnvironmentMap;
+struct TracerAccess;
+
+class PROXYGIREFERENCE_EXPORT ReferenceTracer
+{
+public:
+  ReferenceTracer();
+  ~ReferenceTracer();
+  ReferenceTracer(const ReferenceTracer&) = delete;
+  ReferenceTracer& operator=(const ReferenceTracer&) = delete;
+
+  /**
+   * Adds a triangle mesh. albedo: per-vertex RGB (3 x points) or null for
+   * objectAlbedo. Degenerate (zero-area) triangles are skipped and counted;
+   * NaN/Inf coordinates or out-of-range indices fail with a message.
+   */
+  bool AddMesh(const std::vector<float>& points, const std::vector<unsigned>& triangles,
+    const float* albedo, const float objectAlbedo[3], std::string& error);
+  /// Adds a sphere (a proxy) with a uniform albedo.
+  bool AddSphere(const double center[3], double radius, const float albedo[3], std::string& error);
+  /// The environment (kept by pointer; the caller keeps it alive). Null: black.
+  void SetEnvironment(const EnvironmentMap* environment);
+  void AddSphereLight(const double center[3], double radius, const float radiance[3]);
+  void AddPointLight(const double position[3], const float intensity[3]);
+  /// Builds the Embree scene; fails for an empty scene.
+  bool Commit(std::string& error);
+
+  /// Diagonal of the scene's bounding box (sets the ray offset).
+  double GetSceneSize() const { return this->SceneSize; }
+  std::size_t GetSkippedTriangles() const { return this->SkippedTriangles; }
+  /// Rays traced so far (intersection and occlusion), for throughput.
+  std::uint64_t GetRayCount() const { return this->Rays.load(); }
+
+  struct Settings
+  {
+    int Samples = 256;
+    /// 0: direct light only; 1: one-bounce indirect (the default); more for tests.
+    int MaxBounces = 1;
+    std::uint64_t Seed = 1;
+  };
+
+  struct Estimate
+  {
+    double Direct[3] = { 0, 0, 0 };   // irradiance
+    double Indirect[3] = { 0, 0, 0 }; // irradiance
+    double DirectStdErr[3] = { 0, 0, 0 };
+    double IndirectStdErr[3] = { 0, 0, 0 };
+    double TotalStdErr[3] = { 0, 0, 0 };
+  };
+
+  /// Irradiance at x (normal n, unit), from random stream `stream`.
+  void EstimateIrradiance(const double x[3], const double n[3], std::uint64_t stream,
+    const Settings& settings, Estimate& out) const;
+
+  /**
+   * Exit radiance seen along a camera ray (first hit's albedo/pi times its
+   * estimated irradiance; the environment where nothing is hit).
+   * Returns false when the ray hits nothing.
+   */
+  bool EstimateRadianceAlongRay(const double origin[3], const double direction[3],
+    std::uint64_t stream, const Settings& settings, double radiance[3], double stdErr[3]) const;
+
+  /// Albedo and geometric normal of the first hit along a ray, for tests.
+  bool FirstHit(const double origin[3], const double direction[3], double& t, double normal[3],
+    float albedo[3]) const;
+
+  struct Internal;
+
+private:
+  friend struct TracerAccess;
+  std::unique_ptr<Internal> Impl;
+  double SceneSize = 1.0;
+  std::size_t SkippedTriangles = 0;
+  mutable std::atomic<std::uint64_t> Rays{ 0 };
+};
+
+} // namespace proxygi
+
+#endif
