@@ -78,7 +78,9 @@ Commands:
   bench      Run the Google Benchmark programs (accuracy counters included);
              arguments go to the benchmark program.
   proxies    Sphere proxies of a mesh            (not built yet: issue #3)
-  reference  Embree path-traced ground truth     (not built yet: issue #4)
+  reference  Embree path-traced ground truth of a scene (or the default
+             scene), per pixel (EXR/PNG) or per vertex (.vtp), with its noise.
+             Run 'proxygi reference --help'.
 
   proxygi --help | --version
 )";
@@ -144,7 +146,11 @@ int main(int argc, char* argv[])
   {
     return RunBench(argv[0], args);
   }
-  if (command == "proxies" || command == "reference")
+  if (command == "reference")
+  {
+    return proxygi::cli::RunReference(args);
+  }
+  if (command == "proxies")
   {
     std::fprintf(stderr, "proxygi %s: not built yet (see 'proxygi --help')\n", command.c_str());
     return 2;

@@ -5,6 +5,7 @@
 // form E = pi (1 - (r/d)^2 cos(beta)), valid because the sphere never dips
 // below any plane point's horizon when its height >= its radius.
 #include "proxygiCommands.h"
+#include "proxygiImage.h"
 
 #include "pgiSHExp.h"
 #include "pgiSHTables.h"
@@ -52,12 +53,6 @@ struct Scene
   double Radius = 1.0, Height = 1.5, Albedo = 0.8, Extent = 4.0;
 };
 
-unsigned char ToSRGB8(double v)
-{
-  v = v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
-  const double s = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-  return static_cast<unsigned char>(std::lround(255.0 * s));
-}
 } // namespace
 
 int RunRender(const Args& args)

@@ -1,0 +1,94 @@
+// Scene files: the default scene loads; a JSON scene parses into what it
+// says; bad files fail with a message that names the problem.
+#include "pgiScene.h"
+
+#include "pgiTesting.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkPGILighting.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <cstring>
+
+using namespace proxygi;
+
+int TestScene(int, char*[])
+{
+  // The built-in default: bunny (z-up, feet on z = 0) over a plane, forest map.
+  LoadedScene loaded;
+  std::string error;
+  PGI_CHECK(BuildScene(DefaultScene(), loaded, error));
+  std::printf("default scene: %zu objects; %s\n", loaded.Objects.size(), error.c_str());
+  PGI_CHECK(loaded.Objects.size() == 2);
+  if (loaded.Objects.size() == 2)
+  {
+    double b[6];
+    loaded.Objects[0]->GetBounds(b);
+    std::printf("bunny bounds z: %.4f .. %.4f\n", b[4], b[5]);
+    PGI_NEAR(b[4], 0.0, 0.01);
+    PGI_CHECK(loaded.Objects[0]->GetNumberOfPoints() == 37706);
+    PGI_CHECK(loaded.Objects[0]->GetPointData()->GetArray("Albedo") != nullptr);
+  }
+  PGI_CHECK(loaded.Lighting && loaded.Lighting->GetEnvironmentImage() != nullptr);
+
+  const char* json = R"({
+    "name": "test",
+    "objects": [ { "sphere": { "center": [0, 0, 1.5], "radius": 1, "resolution": 16 },
+                   "albedo": [0.2, 0.4, 0.6], "translate": [1, 0, 0] },
+                 { "plane": { "center": [0, 0, 0], "size": 4 } } ],
+    "environment": { "uniform": [2, 2, 2], "rotation": 30 },
+    "lights": [ { "type": "sphere", "center": [0, 0, 5], "radius": 0.5, "radiance": [9, 9, 9] },
+                { "type": "point", "position": [1, 1, 1], "intensity": [3, 3, 3] } ],
+    "camera": { "position": [0, -5, 2], "focal_point": [0, 0, 0], "view_angle": 40, "size": [320, 200] },
+    "effects": { "indirect": false }
+  })";
+  SceneDescription scene;
+  PGI_CHECK(ParseScene(json, ".", scene, error));
+  PGI_CHECK(scene.Objects.size() == 2 && scene.Lights.size() == 2);
+  PGI_CHECK(!scene.Indirect && scene.Shadows);
+  PGI_CHECK(scene.Size[0] == 320 && scene.Size[1] == 200);
+  PGI_CHECK(BuildScene(scene, loaded, error));
+  if (loaded.Objects.size() == 2)
+  {
+    double b[6];
+    loaded.Objects[0]->GetBounds(b);
+    PGI_NEAR(0.5 * (b[0] + b[1]), 1.0, 1e-6); // translated
+    PGI_NEAR(loaded.Objects[0]->GetPointData()->GetArray("Albedo")->GetComponent(0, 2), 0.6, 1e-6);
+    PGI_NEAR(loaded.Lighting->GetUniformRadiance()[0], 2.0, 0.0);
+    PGI_NEAR(loaded.Lighting->GetEnvironmentRotation(), 30.0, 0.0);
+    PGI_CHECK(loaded.Lighting->GetSphereLights().size() == 1);
+    PGI_NEAR(loaded.Camera->GetViewAngle(), 40.0, 0.0);
+  }
+
+  // Bad files: each gives a message naming the problem.
+  struct
+  {
+    const char* Json;
+    const char* Expect;
+  } bad[] = { { "{", "JSON" }, { "[]", "object" }, { "{\"objects\": []}", "objects" },
+    { "{\"objects\": [{\"cube\": 1}]}", "mesh" },
+    { "{\"objects\": [{\"plane\": {}, \"albedo\": [2, 0, 0]}]}", "albedo" },
+    { "{\"objects\": [{\"plane\": {}, \"albedo\": [0.1, 0.2]}]}", "albedo" },
+    { "{\"objects\": [{\"plane\": {}}], \"lights\": [{\"type\": \"laser\"}]}", "type" },
+    { "{\"objects\": [{\"plane\": {}}], \"camera\": {\"size\": [0, 10]}}", "size" } };
+  for (const auto& b : bad)
+  {
+    std::string message;
+    const bool ok = ParseScene(b.Json, ".", scene, message);
+    PGI_CHECK(!ok && message.find(b.Expect) != std::string::npos);
+    if (ok || message.find(b.Expect) == std::string::npos)
+    {
+      std::printf("  for %s got '%s'\n", b.Json, message.c_str());
+    }
+  }
+  // Missing mesh and missing map: found at build time, with a hint.
+  PGI_CHECK(ParseScene("{\"objects\": [{\"mesh\": \"nope.off\"}]}", ".", scene, error));
+  PGI_CHECK(!BuildScene(scene, loaded, error) && error.find("not found") != std::string::npos);
+  PGI_CHECK(ParseScene("{\"objects\": [{\"plane\": {}}], \"environment\": {\"map\": \"none.exr\"}}",
+    ".", scene, error));
+  PGI_CHECK(!BuildScene(scene, loaded, error) && error.find("not found") != std::string::npos);
+  PGI_CHECK(!LoadScene("/nonexistent/scene.json", scene, error));
+  return pgitest::Result();
+}

@@ -1,0 +1,525 @@
+#include "pgiScene.h"
+
+#include "vtkPGIEXRReader.h"
+#include "vtkPGILighting.h"
+#include "vtkPGIOFFReader.h"
+
+#include "vtkCamera.h"
+#include "vtkCleanPolyData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSTLReader.h"
+#include "vtkSphereSource.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
+#include "vtkTriangleFilter.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtk_jsoncpp.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace proxygi
+{
+
+SceneDescription DefaultScene()
+{
+  SceneDescription scene;
+  scene.Name = "default: bunny over a plane, forest map";
+  SceneObject bunny;
+  bunny.Name = "bunny";
+  bunny.MeshPath = "meshes/bunny00.off";
+  // The CGAL bunny is y-up with its feet at y = -0.494; turn it z-up on z = 0.
+  bunny.Rotate[0] = 90.0;
+  bunny.Translate[2] = 0.494;
+  bunny.Albedo[0] = bunny.Albedo[1] = bunny.Albedo[2] = 0.8;
+  SceneObject ground;
+  ground.Name = "ground";
+  ground.Type = SceneObject::Kind::Plane;
+  ground.PlaneSize = 6.0;
+  ground.Albedo[0] = ground.Albedo[1] = ground.Albedo[2] = 0.5;
+  scene.Objects = { bunny, ground };
+  scene.EnvironmentMap = "environments/forest.exr";
+  const double eye[3] = { 1.6, -2.6, 1.5 }, focal[3] = { 0, 0, 0.35 };
+  std::copy(eye, eye + 3, scene.CameraPosition);
+  std::copy(focal, focal + 3, scene.FocalPoint);
+  scene.ViewAngle = 30.0;
+  return scene;
+}
+
+namespace
+{
+bool ReadVector(const Json::Value& v, const char* key, double* out, int n, std::string& error)
+{
+  if (!v.isMember(key))
+  {
+    return true;
+  }
+  const Json::Value& a = v[key];
+  if (!a.isArray() || static_cast<int>(a.size()) != n)
+  {
+    error = std::string("\"") + key + "\" must be an array of " + std::to_string(n) + " numbers";
+    return false;
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    if (!a[i].isNumeric() || !std::isfinite(a[i].asDouble()))
+    {
+      error = std::string("\"") + key + "\" holds a value that is not a finite number";
+      return false;
+    }
+    out[i] = a[i].asDouble();
+  }
+  return true;
+}
+
+bool ReadNumber(const Json::Value& v, const char* key, double& out, std::string& error)
+{
+  if (!v.isMember(key))
+  {
+    return true;
+  }
+  if (!v[key].isNumeric() || !std::isfinite(v[key].asDouble()))
+  {
+    error = std::string("\"") + key + "\" must be a finite number";
+    return false;
+  }
+  out = v[key].asDouble();
+  return true;
+}
+
+bool ReadBool(const Json::Value& v, const char* key, bool& out, std::string& error)
+{
+  if (!v.isMember(key))
+  {
+    return true;
+  }
+  if (!v[key].isBool())
+  {
+    error = std::string("\"") + key + "\" must be true or false";
+    return false;
+  }
+  out = v[key].asBool();
+  return true;
+}
+} // namespace
+
+bool ParseScene(const std::string& json, const std::string& baseFolder, SceneDescription& scene,
+  std::string& error)
+{
+  Json::CharReaderBuilder builder;
+  std::unique_ptr<Json::CharReader> reader(builder.newCharReader());
+  Json::Value root;
+  std::string parseErrors;
+  if (!reader->parse(json.data(), json.data() + json.size(), &root, &parseErrors))
+  {
+    error = "not valid JSON: " + parseErrors;
+    return false;
+  }
+  if (!root.isObject())
+  {
+    error = "the scene must be a JSON object";
+    return false;
+  }
+  scene = SceneDescription();
+  scene.BaseFolder = baseFolder;
+  if (root.isMember("name") && root["name"].isString())
+  {
+    scene.Name = root["name"].asString();
+  }
+  if (!root.isMember("objects") || !root["objects"].isArray() || root["objects"].empty())
+  {
+    error = "\"objects\" must be a non-empty array";
+    return false;
+  }
+  for (Json::ArrayIndex i = 0; i < root["objects"].size(); ++i)
+  {
+    const Json::Value& o = root["objects"][i];
+    const std::string where = "object " + std::to_string(i) + ": ";
+    SceneObject object;
+    object.Name = o.get("name", "object" + std::to_string(i)).asString();
+    if (o.isMember("mesh"))
+    {
+      if (!o["mesh"].isString())
+      {
+        error = where + "\"mesh\" must be a file name";
+        return false;
+      }
+      object.MeshPath = o["mesh"].asString();
+    }
+    else if (o.isMember("plane"))
+    {
+      object.Type = SceneObject::Kind::Plane;
+      if (!ReadVector(o["plane"], "center", object.PlaneCenter, 3, error) ||
+        !ReadNumber(o["plane"], "size", object.PlaneSize, error))
+      {
+        error = where + error;
+        return false;
+      }
+    }
+    else if (o.isMember("sphere"))
+    {
+      object.Type = SceneObject::Kind::Sphere;
+      double resolution = object.SphereResolution;
+      if (!ReadVector(o["sphere"], "center", object.SphereCenter, 3, error) ||
+        !ReadNumber(o["sphere"], "radius", object.SphereRadius, error) ||
+        !ReadNumber(o["sphere"], "resolution", resolution, error))
+      {
+        error = where + error;
+        return false;
+      }
+      object.SphereResolution = static_cast<int>(resolution);
+    }
+    else
+    {
+      error = where + "needs \"mesh\", \"plane\" or \"sphere\"";
+      return false;
+    }
+    if (!ReadVector(o, "translate", object.Translate, 3, error) ||
+      !ReadVector(o, "rotate", object.Rotate, 3, error) ||
+      !ReadNumber(o, "scale", object.Scale, error) ||
+      !ReadVector(o, "albedo", object.Albedo, 3, error))
+    {
+      error = where + error;
+      return false;
+    }
+    for (double a : object.Albedo)
+    {
+      if (a < 0.0 || a > 1.0)
+      {
+        error = where + "albedo must lie in [0, 1]";
+        return false;
+      }
+    }
+    if (!(object.Scale > 0.0) || !(object.PlaneSize > 0.0) || !(object.SphereRadius > 0.0) ||
+      object.SphereResolution < 3)
+    {
+      error = where + "scale, size and radius must be positive, resolution at least 3";
+      return false;
+    }
+    scene.Objects.push_back(object);
+  }
+  if (root.isMember("environment"))
+  {
+    const Json::Value& e = root["environment"];
+    if (e.isMember("map"))
+    {
+      if (!e["map"].isString())
+      {
+        error = "environment: \"map\" must be a file name";
+        return false;
+      }
+      scene.EnvironmentMap = e["map"].asString();
+    }
+    if (!ReadVector(e, "uniform", scene.UniformRadiance, 3, error) ||
+      !ReadNumber(e, "rotation", scene.EnvironmentRotation, error) ||
+      !ReadNumber(e, "scale", scene.EnvironmentScale, error))
+    {
+      error = "environment: " + error;
+      return false;
+    }
+  }
+  if (root.isMember("lights"))
+  {
+    if (!root["lights"].isArray())
+    {
+      error = "\"lights\" must be an array";
+      return false;
+    }
+    for (const Json::Value& l : root["lights"])
+    {
+      SceneLight light;
+      const std::string type = l.get("type", "").asString();
+      if (type == "sphere")
+      {
+        light.Sphere = true;
+        if (!ReadVector(l, "center", light.Position, 3, error) ||
+          !ReadNumber(l, "radius", light.Radius, error) ||
+          !ReadVector(l, "radiance", light.Value, 3, error))
+        {
+          error = "sphere light: " + error;
+          return false;
+        }
+      }
+      else if (type == "point")
+      {
+        light.Sphere = false;
+        if (!ReadVector(l, "position", light.Position, 3, error) ||
+          !ReadVector(l, "intensity", light.Value, 3, error))
+        {
+          error = "point light: " + error;
+          return false;
+        }
+      }
+      else
+      {
+        error = "a light's \"type\" must be \"sphere\" or \"point\"";
+        return false;
+      }
+      scene.Lights.push_back(light);
+    }
+  }
+  if (root.isMember("camera"))
+  {
+    const Json::Value& c = root["camera"];
+    double size[2] = { double(scene.Size[0]), double(scene.Size[1]) };
+    if (!ReadVector(c, "position", scene.CameraPosition, 3, error) ||
+      !ReadVector(c, "focal_point", scene.FocalPoint, 3, error) ||
+      !ReadVector(c, "view_up", scene.ViewUp, 3, error) ||
+      !ReadNumber(c, "view_angle", scene.ViewAngle, error) ||
+      !ReadVector(c, "size", size, 2, error))
+    {
+      error = "camera: " + error;
+      return false;
+    }
+    scene.Size[0] = static_cast<int>(size[0]);
+    scene.Size[1] = static_cast<int>(size[1]);
+    if (scene.Size[0] < 1 || scene.Size[1] < 1 || scene.Size[0] > 16384 || scene.Size[1] > 16384)
+    {
+      error = "camera: size must lie in 1..16384";
+      return false;
+    }
+  }
+  if (root.isMember("effects"))
+  {
+    const Json::Value& e = root["effects"];
+    if (!ReadBool(e, "shadows", scene.Shadows, error) ||
+      !ReadBool(e, "indirect", scene.Indirect, error) ||
+      !ReadBool(e, "local_lights", scene.LocalLights, error))
+    {
+      error = "effects: " + error;
+      return false;
+    }
+  }
+  return true;
+}
+
+bool LoadScene(const std::string& path, SceneDescription& scene, std::string& error)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    error = "cannot open scene file '" + path + "'";
+    return false;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::size_t slash = path.rfind('/');
+  const std::string folder = slash == std::string::npos ? "." : path.substr(0, slash);
+  if (!ParseScene(text.str(), folder, scene, error))
+  {
+    error = path + ": " + error;
+    return false;
+  }
+  return true;
+}
+
+std::string ResolveDataPath(const std::string& path, const std::string& baseFolder)
+{
+  auto exists = [](const std::string& p) { return static_cast<bool>(std::ifstream(p)); };
+  if (!path.empty() && path[0] == '/')
+  {
+    return exists(path) ? path : std::string();
+  }
+  if (!baseFolder.empty() && exists(baseFolder + "/" + path))
+  {
+    return baseFolder + "/" + path;
+  }
+  const char* env = std::getenv("PROXYGI_DATA_DIR");
+  const std::string data = env && *env ? env : PROXYGI_DEFAULT_DATA_DIR;
+  return exists(data + "/" + path) ? data + "/" + path : std::string();
+}
+
+namespace
+{
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& error)
+{
+  const std::size_t dot = path.rfind('.');
+  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  for (char& c : ext)
+  {
+    c = static_cast<char>(std::tolower(c));
+  }
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (ext == "off")
+  {
+    auto r = vtkSmartPointer<vtkPGIOFFReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (ext == "obj")
+  {
+    auto r = vtkSmartPointer<vtkOBJReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (ext == "stl")
+  {
+    auto r = vtkSmartPointer<vtkSTLReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (ext == "vtp")
+  {
+    auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else
+  {
+    error = "unknown mesh format '" + ext + "' (use .off, .obj, .stl or .vtp)";
+    return nullptr;
+  }
+  reader->Update();
+  vtkPolyData* mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (!mesh || mesh->GetNumberOfPolys() == 0)
+  {
+    error = "'" + path + "' holds no polygons";
+    return nullptr;
+  }
+  return mesh;
+}
+} // namespace
+
+bool BuildScene(const SceneDescription& scene, LoadedScene& loaded, std::string& error)
+{
+  loaded = LoadedScene();
+  for (const SceneObject& object : scene.Objects)
+  {
+    vtkSmartPointer<vtkPolyData> mesh;
+    if (object.Type == SceneObject::Kind::Mesh)
+    {
+      const std::string path = ResolveDataPath(object.MeshPath, scene.BaseFolder);
+      if (path.empty())
+      {
+        error = object.Name + ": mesh '" + object.MeshPath +
+          "' not found (run Utilities/setup.sh --data, or set PROXYGI_DATA_DIR)";
+        return false;
+      }
+      mesh = ReadMesh(path, error);
+      if (!mesh)
+      {
+        error = object.Name + ": " + error;
+        return false;
+      }
+    }
+    else if (object.Type == SceneObject::Kind::Plane)
+    {
+      vtkNew<vtkPlaneSource> plane;
+      const double* c = object.PlaneCenter;
+      const double h = 0.5 * object.PlaneSize;
+      plane->SetOrigin(c[0] - h, c[1] - h, c[2]);
+      plane->SetPoint1(c[0] + h, c[1] - h, c[2]);
+      plane->SetPoint2(c[0] - h, c[1] + h, c[2]);
+      plane->SetResolution(64, 64);
+      plane->Update();
+      mesh = plane->GetOutput();
+    }
+    else
+    {
+      vtkNew<vtkSphereSource> sphere;
+      sphere->SetCenter(object.SphereCenter[0], object.SphereCenter[1], object.SphereCenter[2]);
+      sphere->SetRadius(object.SphereRadius);
+      sphere->SetThetaResolution(object.SphereResolution);
+      sphere->SetPhiResolution(object.SphereResolution / 2 + 1);
+      sphere->Update();
+      mesh = sphere->GetOutput();
+    }
+    vtkNew<vtkTransform> transform;
+    transform->PostMultiply();
+    transform->Scale(object.Scale, object.Scale, object.Scale);
+    transform->RotateX(object.Rotate[0]);
+    transform->RotateY(object.Rotate[1]);
+    transform->RotateZ(object.Rotate[2]);
+    transform->Translate(object.Translate);
+    vtkNew<vtkTransformPolyDataFilter> moved;
+    moved->SetInputData(mesh);
+    moved->SetTransform(transform);
+    vtkNew<vtkTriangleFilter> triangles;
+    triangles->SetInputConnection(moved->GetOutputPort());
+    triangles->PassVertsOff();
+    triangles->PassLinesOff();
+    triangles->Update();
+    auto result = vtkSmartPointer<vtkPolyData>::New();
+    result->DeepCopy(triangles->GetOutput());
+    vtkNew<vtkFloatArray> albedo;
+    albedo->SetName("Albedo");
+    albedo->SetNumberOfComponents(3);
+    albedo->SetNumberOfTuples(result->GetNumberOfPoints());
+    const float a[3] = { float(object.Albedo[0]), float(object.Albedo[1]),
+      float(object.Albedo[2]) };
+    for (vtkIdType i = 0; i < result->GetNumberOfPoints(); ++i)
+    {
+      albedo->SetTypedTuple(i, a);
+    }
+    result->GetPointData()->AddArray(albedo);
+    loaded.Objects.push_back(result);
+  }
+
+  loaded.Lighting = vtkSmartPointer<vtkPGILighting>::New();
+  if (!scene.EnvironmentMap.empty())
+  {
+    const std::string path = ResolveDataPath(scene.EnvironmentMap, scene.BaseFolder);
+    if (path.empty())
+    {
+      error = "environment map '" + scene.EnvironmentMap +
+        "' not found (run Utilities/setup.sh --data, or set PROXYGI_DATA_DIR)";
+      return false;
+    }
+    vtkNew<vtkPGIEXRReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    if (reader->GetOutput()->GetNumberOfPoints() == 0)
+    {
+      error = "cannot read environment map '" + path + "'";
+      return false;
+    }
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(reader->GetOutput());
+    if (scene.EnvironmentScale != 1.0)
+    {
+      vtkDataArray* s = image->GetPointData()->GetScalars();
+      for (vtkIdType i = 0; i < s->GetNumberOfValues(); ++i)
+      {
+        s->SetVariantValue(i, s->GetVariantValue(i).ToDouble() * scene.EnvironmentScale);
+      }
+    }
+    loaded.Lighting->SetEnvironmentImage(image);
+  }
+  else
+  {
+    double u[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      u[k] = scene.UniformRadiance[k] * scene.EnvironmentScale;
+    }
+    loaded.Lighting->SetUniformRadiance(u);
+  }
+  loaded.Lighting->SetEnvironmentRotation(scene.EnvironmentRotation);
+  for (const SceneLight& l : scene.Lights)
+  {
+    if (l.Sphere)
+    {
+      loaded.Lighting->AddSphereLight(l.Position, l.Radius, l.Value);
+    }
+    else
+    {
+      loaded.Lighting->AddPointLight(l.Position, l.Value);
+    }
+  }
+  loaded.Camera = vtkSmartPointer<vtkCamera>::New();
+  loaded.Camera->SetPosition(scene.CameraPosition);
+  loaded.Camera->SetFocalPoint(scene.FocalPoint);
+  loaded.Camera->SetViewUp(scene.ViewUp);
+  loaded.Camera->SetViewAngle(scene.ViewAngle);
+  return true;
+}
+
+} // namespace proxygi

@@ -1,0 +1,115 @@
+/**
+ * @file pgiScene.h
+ * @brief Scene descriptions shared by every ProxyGI renderer: a small JSON
+ * file, or the built-in default scene (the bunny over a ground plane under
+ * the forest map).
+ *
+ * ```json
+ * {
+ *   "objects": [
+ *     { "name": "bunny", "mesh": "meshes/bunny00.off",
+ *       "translate": [0, 0, 0.39], "rotate": [90, 0, 0], "scale": 1,
+ *       "albedo": [0.8, 0.8, 0.8] },
+ *     { "name": "ground", "plane": { "center": [0, 0, 0], "size": 6 },
+ *       "albedo": [0.5, 0.5, 0.5] },
+ *     { "name": "ball", "sphere": { "center": [0, 0, 1.5], "radius": 1, "resolution": 64 } }
+ *   ],
+ *   "environment": { "map": "environments/forest.exr", "rotation": 0, "scale": 1 },
+ *   "lights": [ { "type": "sphere", "center": [2, 0, 3], "radius": 0.3, "radiance": [20, 20, 20] },
+ *               { "type": "point", "position": [0, 2, 3], "intensity": [5, 5, 5] } ],
+ *   "camera": { "position": [0, -4, 2], "focal_point": [0, 0, 0.4], "view_up": [0, 0, 1],
+ *               "view_angle": 30, "size": [512, 512] },
+ *   "effects": { "shadows": true, "indirect": true, "local_lights": true }
+ * }
+ * ```
+ * "environment" may instead be { "uniform": [r, g, b] }. Rotations are
+ * degrees about x, then y, then z; the transform applies scale, rotation,
+ * translation in that order. Mesh and map paths are tried relative to the
+ * scene file's folder, then to the data folder ($PROXYGI_DATA_DIR, else the
+ * one the build was configured with). Meshes: .off, .vtp, .obj, .stl.
+ */
+#ifndef pgiScene_h
+#define pgiScene_h
+
+#include "ProxyGISceneModule.h"
+#include "vtkSmartPointer.h"
+
+#include <string>
+#include <vector>
+
+class vtkCamera;
+class vtkPGILighting;
+class vtkPolyData;
+
+namespace proxygi
+{
+
+struct SceneObject
+{
+  std::string Name;
+  enum class Kind
+  {
+    Mesh,
+    Plane,
+    Sphere
+  } Type = Kind::Mesh;
+  std::string MeshPath;
+  double PlaneCenter[3] = { 0, 0, 0 }, PlaneSize = 1.0;
+  double SphereCenter[3] = { 0, 0, 0 }, SphereRadius = 1.0;
+  int SphereResolution = 64;
+  double Translate[3] = { 0, 0, 0 }, Rotate[3] = { 0, 0, 0 }, Scale = 1.0;
+  double Albedo[3] = { 0.8, 0.8, 0.8 };
+};
+
+struct SceneLight
+{
+  bool Sphere = true;
+  double Position[3] = { 0, 0, 0 };
+  double Radius = 0.0;
+  double Value[3] = { 1, 1, 1 }; // radiance (sphere) or intensity (point)
+};
+
+struct SceneDescription
+{
+  std::string Name = "scene";
+  std::string BaseFolder; // where relative paths start
+  std::vector<SceneObject> Objects;
+  std::string EnvironmentMap; // empty: uniform
+  double UniformRadiance[3] = { 1, 1, 1 };
+  double EnvironmentRotation = 0.0, EnvironmentScale = 1.0;
+  std::vector<SceneLight> Lights;
+  double CameraPosition[3] = { 0, -4, 2 }, FocalPoint[3] = { 0, 0, 0 }, ViewUp[3] = { 0, 0, 1 };
+  double ViewAngle = 30.0;
+  int Size[2] = { 512, 512 };
+  bool Shadows = true, Indirect = true, LocalLights = true;
+};
+
+/// The built-in default scene: the bunny over a ground plane, forest map.
+PROXYGISCENE_EXPORT SceneDescription DefaultScene();
+
+/// Parses a JSON scene file; false with a message naming the problem.
+PROXYGISCENE_EXPORT bool LoadScene(
+  const std::string& path, SceneDescription& scene, std::string& error);
+/// Parses JSON text (paths relative to baseFolder).
+PROXYGISCENE_EXPORT bool ParseScene(const std::string& json, const std::string& baseFolder,
+  SceneDescription& scene, std::string& error);
+
+/// What the renderers consume: transformed polydata with an "Albedo" array.
+struct LoadedScene
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> Objects;
+  vtkSmartPointer<vtkPGILighting> Lighting;
+  vtkSmartPointer<vtkCamera> Camera;
+};
+
+/// Reads the meshes and the map, applies transforms; false with a message.
+PROXYGISCENE_EXPORT bool BuildScene(
+  const SceneDescription& scene, LoadedScene& loaded, std::string& error);
+
+/// Resolves a data path as described above ("" when not found).
+PROXYGISCENE_EXPORT std::string ResolveDataPath(
+  const std::string& path, const std::string& baseFolder);
+
+} // namespace proxygi
+
+#endif
