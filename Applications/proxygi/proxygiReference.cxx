@@ -164,7 +164,8 @@ int RunReference(const Args& args)
     }
     const double seconds = ElapsedSeconds(start);
     const double rays = out->GetFieldData()->GetArray("Rays")->GetTuple1(0);
-    const double rel = out->GetFieldData()->GetArray("MeanRelativeStdErr")->GetTuple1(0);
+    const double meanRel = out->GetFieldData()->GetArray("MeanRelativeStdErr")->GetTuple1(0);
+    const double rel = out->GetFieldData()->GetArray("RelativeRMSStdErr")->GetTuple1(0);
     vtkNew<vtkXMLPolyDataWriter> writer;
     writer->SetFileName(perVertex.c_str());
     writer->SetInputData(out);
@@ -173,11 +174,12 @@ int RunReference(const Args& args)
     std::printf("per vertex: %lld receivers, %d samples, %d bounce(s), %d threads\n",
       static_cast<long long>(out->GetNumberOfPoints()), spp, bounces,
       vtkSMPTools::GetEstimatedNumberOfThreads());
-    std::printf("time %.2f s, %.2f Mrays/s, mean relative standard error %.3f%%\n", seconds,
-      rays / seconds / 1e6, 100 * rel);
+    std::printf("time %.2f s, %.2f Mrays/s; standard error: relative RMS %.3f%%, mean of "
+                "per-vertex relative %.3f%%\n",
+      seconds, rays / seconds / 1e6, 100 * rel, 100 * meanRel);
     // Noise falls as 1/sqrt(samples): what 1% would take, extrapolated.
     const double sppFor1 = spp * (rel / 0.01) * (rel / 0.01);
-    std::printf("extrapolated to 1%% standard error: %.0f samples, %.1f s\n", sppFor1,
+    std::printf("extrapolated to 1%% relative RMS standard error: %.0f samples, %.1f s\n", sppFor1,
       seconds * sppFor1 / spp);
     std::printf("wrote %s\n", perVertex.c_str());
     return 0;

@@ -1,6 +1,7 @@
 #include "pgiEnvironmentMap.h"
 
 #include "pgiSHBasis.h"
+#include "pgiSHZonal.h"
 
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
@@ -362,6 +363,17 @@ void EnvironmentMap::ProjectSH(int order, double* red, double* green, double* bl
         }
       }
     }
+  }
+}
+
+void EnvironmentMap::ProjectIrradianceSH(int order, double* red, double* green, double* blue) const
+{
+  this->ProjectSH(order, red, green, blue);
+  double kernel[sh::MaxBasisOrder];
+  sh::ClampedCosineZonal(order, kernel);
+  for (double* channel : { red, green, blue })
+  {
+    sh::ConvolveZonal(order, kernel, channel);
   }
 }
 

@@ -62,6 +62,10 @@ public:
   /// SH projection of each channel (order n: 3 rows of n^2), in world space.
   void ProjectSH(int order, double* red, double* green, double* blue) const;
 
+  /// Irradiance E(n) = int L max(n.w, 0) dw as SH (the projection convolved
+  /// with the clamped cosine); E(n) = sum_i e_i y_i(n).
+  void ProjectIrradianceSH(int order, double* red, double* green, double* blue) const;
+
   /// Mean radiance over the sphere (solid-angle weighted).
   void Mean(double rgb[3]) const;
 

@@ -582,9 +582,10 @@ void ReferenceTracer::EstimateIrradiance(const double x[3], const double n[3], s
   }
 }
 
-bool ReferenceTracer::EstimateRadianceAlongRay(const double origin[3], const double direction[3],
-  std::uint64_t stream, const Settings& settings, double radiance[3], double stdErr[3]) const
+void ReferenceTracer::EstimateRadianceAlongRay(const double origin[3], const double direction[3],
+  std::uint64_t stream, const Settings& settings, RadianceEstimate& out) const
 {
+  out = RadianceEstimate();
   Hit hit;
   if (!TracerAccess::Intersect(*this->Impl, origin, direction, hit, this->Rays))
   {
@@ -595,11 +596,11 @@ bool ReferenceTracer::EstimateRadianceAlongRay(const double origin[3], const dou
     }
     for (int k = 0; k < 3; ++k)
     {
-      radiance[k] = rgb[k];
-      stdErr[k] = 0.0;
+      out.Direct[k] = out.Total[k] = rgb[k];
     }
-    return false;
+    return;
   }
+  out.Hit = true;
   double x[3];
   for (int k = 0; k < 3; ++k)
   {
@@ -609,10 +610,12 @@ bool ReferenceTracer::EstimateRadianceAlongRay(const double origin[3], const dou
   this->EstimateIrradiance(x, hit.Normal, stream, settings, e);
   for (int k = 0; k < 3; ++k)
   {
-    radiance[k] = hit.Albedo[k] / Pi * (e.Direct[k] + e.Indirect[k]);
-    stdErr[k] = hit.Albedo[k] / Pi * e.TotalStdErr[k];
+    const double s = hit.Albedo[k] / Pi;
+    out.Direct[k] = s * e.Direct[k];
+    out.Indirect[k] = s * e.Indirect[k];
+    out.Total[k] = out.Direct[k] + out.Indirect[k];
+    out.TotalStdErr[k] = s * e.TotalStdErr[k];
   }
-  return true;
 }
 
 bool ReferenceTracer::FirstHit(const double origin[3], const double direction[3], double& t,

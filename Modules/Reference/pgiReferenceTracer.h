@@ -83,13 +83,21 @@ public:
   void EstimateIrradiance(const double x[3], const double n[3], std::uint64_t stream,
     const Settings& settings, Estimate& out) const;
 
+  struct RadianceEstimate
+  {
+    bool Hit = false;
+    double Direct[3] = { 0, 0, 0 };   // exit radiance from direct light
+    double Indirect[3] = { 0, 0, 0 }; // exit radiance from bounced light
+    double Total[3] = { 0, 0, 0 };
+    double TotalStdErr[3] = { 0, 0, 0 };
+  };
   /**
-   * Exit radiance seen along a camera ray (first hit's albedo/pi times its
-   * estimated irradiance; the environment where nothing is hit).
-   * Returns false when the ray hits nothing.
+   * Exit radiance seen along a camera ray: the first hit's albedo/pi times
+   * its estimated irradiance, split into direct and indirect; where nothing
+   * is hit, the environment (counted as direct).
    */
-  bool EstimateRadianceAlongRay(const double origin[3], const double direction[3],
-    std::uint64_t stream, const Settings& settings, double radiance[3], double stdErr[3]) const;
+  void EstimateRadianceAlongRay(const double origin[3], const double direction[3],
+    std::uint64_t stream, const Settings& settings, RadianceEstimate& out) const;
 
   /// Albedo and geometric normal of the first hit along a ray, for tests.
   bool FirstHit(const double origin[3], const double direction[3], double& t, double normal[3],

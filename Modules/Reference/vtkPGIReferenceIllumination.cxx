@@ -254,16 +254,19 @@ int vtkPGIReferenceIllumination::RequestData(
     pd->SetNormals(normals);
   }
   // Mean relative standard error of the luminance of Radiance.
-  double rel = 0.0;
+  double rel = 0.0, errSq = 0.0, valueSq = 0.0;
   vtkIdType counted = 0;
   for (vtkIdType i = 0; i < n; ++i)
   {
     const float* t = total->GetPointer(3 * i);
     const float* te = totalErr->GetPointer(3 * i);
     const double lum = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+    const double lumErr = 0.2126 * te[0] + 0.7152 * te[1] + 0.0722 * te[2];
+    errSq += lumErr * lumErr;
+    valueSq += lum * lum;
     if (lum > 0.0)
     {
-      rel += (0.2126 * te[0] + 0.7152 * te[1] + 0.0722 * te[2]) / lum;
+      rel += lumErr / lum;
       ++counted;
     }
   }
@@ -277,6 +280,8 @@ int vtkPGIReferenceIllumination::RequestData(
   field("Samples", this->Samples);
   field("Rays", static_cast<double>(tracer.GetRayCount()));
   field("MeanRelativeStdErr", counted ? rel / counted : 0.0);
+  // The normalisation of the project's error metric (relative RMSE).
+  field("RelativeRMSStdErr", valueSq > 0.0 ? std::sqrt(errSq / valueSq) : 0.0);
   field("SkippedTriangles", static_cast<double>(tracer.GetSkippedTriangles()));
   return 1;
 }

@@ -18,7 +18,9 @@
  * | IndirectOneBounce | one diffuse bounce (MaxBounces bounces if > 1) |
  * | Radiance | their sum |
  * | RadianceStdErr | standard error of Radiance (and DirectStdErr, IndirectStdErr) |
- * and field data "Samples", "Rays", "MeanRelativeStdErr".
+ * and field data "Samples", "Rays", "MeanRelativeStdErr" (mean over vertices of
+ * stderr/value) and "RelativeRMSStdErr" (sqrt(sum stderr^2 / sum value^2), the
+ * normalisation of the project's relative-RMSE error metric).
  *
  * | property | default | cost |
  * |---|---|---|

@@ -168,10 +168,12 @@ int vtkPGIReferenceImage::RequestData(
   const double aspect = static_cast<double>(w) / h;
 
   image->SetExtent(0, w - 1, 0, h - 1, 0, 0);
-  vtkNew<vtkFloatArray> radiance, stdErr;
+  vtkNew<vtkFloatArray> radiance, stdErr, direct, indirect;
   radiance->SetName("Radiance");
   stdErr->SetName("RadianceStdErr");
-  for (vtkFloatArray* a : { radiance.Get(), stdErr.Get() })
+  direct->SetName("DirectShadowed");
+  indirect->SetName("IndirectOneBounce");
+  for (vtkFloatArray* a : { radiance.Get(), stdErr.Get(), direct.Get(), indirect.Get() })
   {
     a->SetNumberOfComponents(3);
     a->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
@@ -196,19 +198,25 @@ int vtkPGIReferenceImage::RequestData(
             dir[k] = forward[k] + sx * right[k] + sy * up[k];
           }
           vtkMath::Normalize(dir);
-          double rad[3], err[3];
           const vtkIdType pixel = static_cast<vtkIdType>(row) * w + col;
-          tracer.EstimateRadianceAlongRay(
-            eye, dir, static_cast<std::uint64_t>(pixel), settings, rad, err);
-          const float rf[3] = { float(rad[0]), float(rad[1]), float(rad[2]) };
-          const float ef[3] = { float(err[0]), float(err[1]), float(err[2]) };
-          radiance->SetTypedTuple(pixel, rf);
-          stdErr->SetTypedTuple(pixel, ef);
+          proxygi::ReferenceTracer::RadianceEstimate e;
+          tracer.EstimateRadianceAlongRay(eye, dir, static_cast<std::uint64_t>(pixel), settings, e);
+          auto put = [pixel](vtkFloatArray* a, const double* v)
+          {
+            const float f[3] = { float(v[0]), float(v[1]), float(v[2]) };
+            a->SetTypedTuple(pixel, f);
+          };
+          put(radiance, e.Total);
+          put(stdErr, e.TotalStdErr);
+          put(direct, e.Direct);
+          put(indirect, e.Indirect);
         }
       });
     this->UpdateProgress(static_cast<double>(row + 1) / h);
   }
   image->GetPointData()->SetScalars(radiance);
   image->GetPointData()->AddArray(stdErr);
+  image->GetPointData()->AddArray(direct);
+  image->GetPointData()->AddArray(indirect);
   return 1;
 }

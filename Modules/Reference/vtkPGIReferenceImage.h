@@ -8,7 +8,8 @@
  * sphere proxies, which replace the objects when UseProxies is on. Light: a
  * vtkPGILighting; pixels that see no geometry show the environment.
  * Output: vtkImageData Width x Height, RGB float point arrays "Radiance"
- * (the scalars) and "RadianceStdErr"; VTK row order (row 0 at the bottom).
+ * (the scalars), "DirectShadowed", "IndirectOneBounce" and "RadianceStdErr";
+ * VTK row order (row 0 at the bottom).
  * Write it with vtkPGIEXRWriter, or tone-map it for a PNG.
  */
 #ifndef vtkPGIReferenceImage_h
