@@ -28,9 +28,6 @@ bool AddPolyData(ReferenceTracer& tracer, vtkPolyData* mesh, const double defaul
 bool AddProxySpheres(ReferenceTracer& tracer, vtkPolyData* proxies, const double defaultAlbedo[3],
   const char* albedoArray, std::string& error);
 
-/// Reads albedo of point `id` from the array (or the default) into rgb.
-void AlbedoOf(vtkPolyData* mesh, const char* albedoArray, vtkIdType id,
-  const double defaultAlbedo[3], double rgb[3]);
 } // namespace proxygi
 
 #endif

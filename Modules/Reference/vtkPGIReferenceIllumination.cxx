@@ -1,6 +1,7 @@
 #include "vtkPGIReferenceIllumination.h"
 
 #include "pgiEnvironmentMap.h"
+#include "pgiMaterial.h"
 #include "pgiReferenceScene.h"
 #include "pgiReferenceTracer.h"
 #include "vtkPGILighting.h"

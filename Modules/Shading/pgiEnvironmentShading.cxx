@@ -1,0 +1,128 @@
+#include "pgiEnvironmentShading.h"
+
+#include "pgiSHTripleProduct.h"
+#include "pgiSHZonal.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace proxygi
+{
+
+EnvironmentShading::EnvironmentShading(
+  int order, const double* red, const double* green, const double* blue, Path path, int tableHeight)
+  : Order(order)
+  , Width(2 * tableHeight)
+  , Height(tableHeight)
+  , ShadingPath(path)
+{
+  const int n2 = sh::NumCoefficients(order);
+  const double* channels[3] = { red, green, blue };
+  this->Light.resize(3 * n2);
+  for (int c = 0; c < 3; ++c)
+  {
+    std::copy(channels[c], channels[c] + n2, this->Light.begin() + c * n2);
+  }
+  const sh::TripleProduct& tp = sh::TripleProduct::Get(order);
+  if (path == Path::ProductMatrix)
+  {
+    this->Matrix.resize(3 * n2 * n2);
+    for (int c = 0; c < 3; ++c)
+    {
+      std::vector<double> m(n2 * n2);
+      tp.ProductMatrix(channels[c], m.data());
+      std::copy(m.begin(), m.end(), this->Matrix.begin() + c * n2 * n2);
+    }
+    return;
+  }
+  // Grid nodes at the cell corners, poles included, so interpolation reaches them.
+  this->LHTable.resize(static_cast<std::size_t>(this->Height + 1) * (this->Width + 1) * 3 * n2);
+  std::vector<double> h(n2), lh(n2);
+  for (int j = 0; j <= this->Height; ++j)
+  {
+    const double theta = sh::Pi * j / this->Height;
+    for (int i = 0; i <= this->Width; ++i)
+    {
+      const double phi = 2 * sh::Pi * i / this->Width;
+      sh::DiffuseTransfer(order, std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+        std::cos(theta), h.data());
+      for (int c = 0; c < 3; ++c)
+      {
+        tp.Product(channels[c], h.data(), lh.data());
+        std::copy(lh.begin(), lh.end(),
+          this->LHTable.begin() +
+            ((static_cast<std::size_t>(j) * (this->Width + 1) + i) * 3 + c) * n2);
+      }
+    }
+  }
+}
+
+void EnvironmentShading::Shade(const float n[3], const float* g, float rgb[3]) const
+{
+  const int n2 = sh::NumCoefficients(this->Order);
+  if (this->ShadingPath == Path::ProductMatrix)
+  {
+    float h[sh::MaxCoefficients];
+    sh::DiffuseTransfer(this->Order, n[0], n[1], n[2], h);
+    for (int c = 0; c < 3; ++c)
+    {
+      const float* m = &this->Matrix[static_cast<std::size_t>(c) * n2 * n2];
+      float sum = 0.0f;
+      for (int i = 0; i < n2; ++i)
+      {
+        float row = 0.0f;
+        for (int j = 0; j < n2; ++j)
+        {
+          row += m[i * n2 + j] * g[j];
+        }
+        sum += row * h[i];
+      }
+      rgb[c] = std::max(0.0f, sum);
+    }
+    return;
+  }
+  const float z = std::max(-1.0f, std::min(1.0f, n[2]));
+  float phi = std::atan2(n[1], n[0]);
+  if (phi < 0.0f)
+  {
+    phi += 2.0f * static_cast<float>(sh::Pi);
+  }
+  const float u = phi / (2.0f * static_cast<float>(sh::Pi)) * this->Width;
+  const float v = std::acos(z) / static_cast<float>(sh::Pi) * this->Height;
+  const int i = std::min(this->Width - 1, std::max(0, static_cast<int>(u)));
+  const int j = std::min(this->Height - 1, std::max(0, static_cast<int>(v)));
+  const float fu = std::min(1.0f, std::max(0.0f, u - i)),
+              fv = std::min(1.0f, std::max(0.0f, v - j));
+  const float w[4] = { (1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv };
+  const std::size_t stride = static_cast<std::size_t>(this->Width + 1);
+  const std::size_t corners[4] = { j * stride + i, j * stride + i + 1, (j + 1) * stride + i,
+    (j + 1) * stride + i + 1 };
+  for (int c = 0; c < 3; ++c)
+  {
+    float sum = 0.0f;
+    for (int k = 0; k < 4; ++k)
+    {
+      const float* lh = &this->LHTable[(corners[k] * 3 + c) * n2];
+      float dot = 0.0f;
+      for (int q = 0; q < n2; ++q)
+      {
+        dot += lh[q] * g[q];
+      }
+      sum += w[k] * dot;
+    }
+    rgb[c] = std::max(0.0f, sum);
+  }
+}
+
+void EnvironmentShading::ShadeUnshadowed(const float n[3], float rgb[3]) const
+{
+  const int n2 = sh::NumCoefficients(this->Order);
+  float h[sh::MaxCoefficients];
+  sh::DiffuseTransfer(this->Order, n[0], n[1], n[2], h);
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] = sh::Dot(n2, h, &this->Light[c * n2]);
+  }
+}
+
+} // namespace proxygi

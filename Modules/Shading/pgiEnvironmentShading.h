@@ -1,0 +1,58 @@
+/**
+ * @file pgiEnvironmentShading.h
+ * @brief Diffuse shading of a receiver under SH environment light and SH
+ * visibility: exit radiance = albedo * H(N) . (L * g) (SHEXP section 7).
+ *
+ * Two paths, as the paper describes:
+ *  - Table (fixed lighting): the vectors LH(N) = L * H(N) tabulated once per
+ *    lighting on a lat-long grid of normals and interpolated bilinearly;
+ *    per receiver it costs n^2 (times 4 for the interpolation) per channel.
+ *  - ProductMatrix (lighting that changes every frame): M_L once per frame,
+ *    then (M_L g) . H(N) per receiver, n^4 per channel.
+ * Both read the same L; a test checks they agree. Ringing in g can make the
+ * product slightly negative where everything is blocked; radiance is clamped
+ * at 0 (continuous, so no popping).
+ */
+#ifndef pgiEnvironmentShading_h
+#define pgiEnvironmentShading_h
+
+#include "ProxyGIShadingModule.h"
+
+#include <vector>
+
+namespace proxygi
+{
+
+class PROXYGISHADING_EXPORT EnvironmentShading
+{
+public:
+  enum class Path
+  {
+    Table,
+    ProductMatrix
+  };
+
+  /// light: 3 rows (R, G, B) of order^2 SH radiance coefficients.
+  EnvironmentShading(int order, const double* red, const double* green, const double* blue,
+    Path path = Path::Table, int tableHeight = 64);
+
+  int GetOrder() const { return this->Order; }
+  Path GetPath() const { return this->ShadingPath; }
+
+  /// Exit radiance of a white receiver (multiply by albedo) with normal n and visibility g.
+  void Shade(const float n[3], const float* g, float rgb[3]) const;
+
+  /// The same without shadows (g = 1), exact.
+  void ShadeUnshadowed(const float n[3], float rgb[3]) const;
+
+private:
+  int Order, Width, Height;
+  Path ShadingPath;
+  std::vector<float> Light;   // 3 x n^2
+  std::vector<float> Matrix;  // 3 x n^2 x n^2 (ProductMatrix path)
+  std::vector<float> LHTable; // Height x Width x 3 x n^2 (Table path)
+};
+
+} // namespace proxygi
+
+#endif

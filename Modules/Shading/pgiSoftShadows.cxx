@@ -1,0 +1,149 @@
+#include "pgiSoftShadows.h"
+
+#include "pgiSHTables.h"
+#include "pgiSHZonal.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace proxygi
+{
+
+void Blockers::AddSphere(float x, float y, float z, float r)
+{
+  this->X.push_back(x);
+  this->Y.push_back(y);
+  this->Z.push_back(z);
+  this->R.push_back(r);
+}
+
+void Blockers::AddPlane(const float origin[3], const float normal[3])
+{
+  const float len =
+    std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  this->PlaneOrigin.insert(this->PlaneOrigin.end(), origin, origin + 3);
+  for (int k = 0; k < 3; ++k)
+  {
+    this->PlaneNormal.push_back(len > 0.0f ? normal[k] / len : (k == 2 ? 1.0f : 0.0f));
+  }
+}
+
+bool ReplaceBlocker(const float p[3], const float n[3], float c[3], float& r)
+{
+  const float v[3] = { c[0] - p[0], c[1] - p[1], c[2] - p[2] };
+  const float h = v[0] * n[0] + v[1] * n[1] + v[2] * n[2]; // centre height over T_p
+  if (h <= -r)
+  {
+    return false; // entirely behind
+  }
+  if (h >= r)
+  {
+    return true; // entirely in front: unchanged
+  }
+  const float d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const float rho = std::sqrt(std::max(0.0f, d2 - h * h));      // along T_p to the foot F
+  const float delta = std::sqrt(std::max(0.0f, r * r - h * h)); // T_p cuts a circle of this radius
+  // F: the foot of the centre on T_p.
+  const float f[3] = { c[0] - h * n[0], c[1] - h * n[1], c[2] - h * n[2] };
+  if (d2 < r * r)
+  {
+    if (h <= 0.0f)
+    {
+      return false;
+    }
+    const float ramp = delta > 0.0f ? std::min(1.0f, 2.0f * (delta - rho) / delta) : 0.0f;
+    r = h * std::max(0.0f, ramp);
+    return r > 0.0f;
+  }
+  // Outside and cut by T_p: diameter from q0 = c + r n down to q1 = F + (r + h) n - (r + h) n.
+  const float ramp = delta > 0.0f ? std::min(1.0f, (rho - delta) / delta) : 1.0f;
+  const float half = 0.5f * (h + r);
+  for (int k = 0; k < 3; ++k)
+  {
+    c[k] = f[k] + half * n[k];
+  }
+  r = half * std::max(0.0f, ramp);
+  return r > 0.0f;
+}
+
+SoftShadows::SoftShadows(const SoftShadowSettings& settings)
+  : Settings(settings)
+{
+  this->AccOrder =
+    settings.AccumulationOrder > settings.Order ? settings.AccumulationOrder : settings.Order;
+  this->AccOrder = std::min(this->AccOrder, sh::MaxOrder);
+  sh::CapTables::Get(this->AccOrder); // build before the parallel loops
+}
+
+int SoftShadows::Visibility(
+  const float p[3], const float n[3], const Blockers& b, float* g, sh::Status& status) const
+{
+  const int order = this->Settings.Order, acc = this->AccOrder;
+  const int n2 = sh::NumCoefficients(order), a2 = sh::NumCoefficients(acc);
+  const sh::CapTables& tables = sh::CapTables::Get(acc);
+  float f[sh::MaxCoefficients], zh[sh::MaxOrder], v[sh::MaxCoefficients];
+  sh::Fill(f, a2, 0.0f);
+  status = sh::Status::Ok;
+  int used = 0;
+  const float sinMin = std::sin(this->Settings.MinAngle);
+  auto accumulate = [&](float theta, float dx, float dy, float dz)
+  {
+    tables.CapLog(theta, zh);
+    sh::RotateScaledZonal(acc, zh, dx, dy, dz, v);
+    for (int i = 0; i < a2; ++i)
+    {
+      f[i] += v[i];
+    }
+    ++used;
+  };
+  for (std::size_t s = 0; s < b.X.size(); ++s)
+  {
+    float c[3] = { b.X[s], b.Y[s], b.Z[s] };
+    float r = b.R[s];
+    if (!(r > 0.0f))
+    {
+      continue; // zero-radius (or NaN) spheres block nothing
+    }
+    if (this->Settings.SelfShadowRules && !ReplaceBlocker(p, n, c, r))
+    {
+      continue;
+    }
+    const float dx = c[0] - p[0], dy = c[1] - p[1], dz = c[2] - p[2];
+    const float d = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(d > 0.0f) || r < sinMin * d)
+    {
+      continue;
+    }
+    const float sinTheta = std::min(1.0f, r / d);
+    accumulate(std::asin(sinTheta), dx / d, dy / d, dz / d);
+  }
+  for (std::size_t k = 0; k < b.Planes(); ++k)
+  {
+    const float* o = &b.PlaneOrigin[3 * k];
+    const float* pn = &b.PlaneNormal[3 * k];
+    const float height = (p[0] - o[0]) * pn[0] + (p[1] - o[1]) * pn[1] + (p[2] - o[2]) * pn[2];
+    // Seen from above, the plane hides the half-space below: a 90-degree cap,
+    // whatever the receiver's normal (no rule, so no jump as normals turn).
+    // Receivers on or under the plane do not see it.
+    if (!(height > 0.0f))
+    {
+      continue;
+    }
+    accumulate(static_cast<float>(sh::CapTables::MaxAngle), -pn[0], -pn[1], -pn[2]);
+  }
+  if (used == 0)
+  {
+    sh::SetConstant(order, 1.0f, g);
+    return 0;
+  }
+  float full[sh::MaxCoefficients];
+  status = sh::Exp(acc, f, full, this->Settings.Exp);
+  std::copy(full, full + n2, g); // truncation to the output order
+  if (this->Settings.WindowH != 0.0)
+  {
+    sh::Window(order, g, this->Settings.WindowH < 0.0 ? 0.0 : this->Settings.WindowH);
+  }
+  return used;
+}
+
+} // namespace proxygi

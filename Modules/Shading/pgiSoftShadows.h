@@ -1,0 +1,89 @@
+/**
+ * @file pgiSoftShadows.h
+ * @brief SHEXP soft shadows at one receiver: the blockers' log-visibility
+ * vectors summed, then exponentiated (Ren et al. 2006, sections 6.1-6.2).
+ *
+ * Blockers are spheres (the proxies) and infinite planes (a ground plane seen
+ * from above is a cap of half-angle 90 degrees). Self-shadow replacement
+ * (section 6.2), made continuous:
+ *  - sphere entirely behind the receiver's tangent plane T_p: dropped;
+ *  - receiver inside the sphere: dropped if the centre is behind T_p, else
+ *    shrunk to the sphere of the same centre tangent to T_p;
+ *  - receiver outside, sphere cut by T_p: replaced by the sphere whose
+ *    diameter runs from the sphere's highest point q0 down to T_p (q1);
+ *  - both replacements are scaled by a ramp in the receiver's distance rho
+ *    (along T_p) to the circle where T_p cuts the sphere, radius delta:
+ *    inside by min(1, (delta - rho) / (delta/2)), outside by
+ *    min(1, (rho - delta) / delta) (the paper's continuity scaling), so both
+ *    vanish where the receiver leaves the sphere and nothing jumps.
+ * Blockers that subtend less than MinAngle are skipped (they would add
+ * nothing the exp could resolve). A plane blocks the half-space beneath it
+ * for every receiver above it (a 90-degree cap); receivers on it are not
+ * blocked by it.
+ */
+#ifndef pgiSoftShadows_h
+#define pgiSoftShadows_h
+
+#include "ProxyGIShadingModule.h"
+
+#include "pgiSHExp.h"
+
+#include <vector>
+
+namespace proxygi
+{
+
+/// Sphere blockers in structure-of-arrays form, plus infinite planes.
+struct PROXYGISHADING_EXPORT Blockers
+{
+  std::vector<float> X, Y, Z, R;
+  std::vector<float> PlaneOrigin, PlaneNormal; // 3 floats each per plane
+  void AddSphere(float x, float y, float z, float r);
+  void AddPlane(const float origin[3], const float normal[3]);
+  std::size_t Spheres() const { return this->X.size(); }
+  std::size_t Planes() const { return this->PlaneOrigin.size() / 3; }
+};
+
+struct PROXYGISHADING_EXPORT SoftShadowSettings
+{
+  int Order = 4;
+  /// Accumulate and exponentiate at this order, then truncate (0: Order).
+  int AccumulationOrder = 0;
+  sh::ExpOptions Exp;
+  /// Cosine window on the visibility (h; 0 = none, < 0 = 2n).
+  double WindowH = 0.0;
+  /// Blockers subtending less than this (radians) are skipped.
+  float MinAngle = 0.002f;
+  bool SelfShadowRules = true;
+};
+
+/**
+ * Applies the replacement rules to one sphere for receiver p, normal n (unit).
+ * Returns false when the sphere is dropped; otherwise c and r hold the
+ * sphere to accumulate.
+ */
+PROXYGISHADING_EXPORT bool ReplaceBlocker(const float p[3], const float n[3], float c[3], float& r);
+
+class PROXYGISHADING_EXPORT SoftShadows
+{
+public:
+  explicit SoftShadows(const SoftShadowSettings& settings);
+
+  int GetOrder() const { return this->Settings.Order; }
+
+  /**
+   * Visibility vector g (Order^2 floats) at receiver p with normal n.
+   * Returns the number of blockers accumulated; 0 means g = 1 exactly (no exp
+   * run). status reports NaN/Inf met on the way.
+   */
+  int Visibility(const float p[3], const float n[3], const Blockers& blockers, float* g,
+    sh::Status& status) const;
+
+private:
+  SoftShadowSettings Settings;
+  int AccOrder;
+};
+
+} // namespace proxygi
+
+#endif

@@ -1,0 +1,322 @@
+#include "vtkPGIGlobalIllumination.h"
+
+#include "pgiEnvironmentMap.h"
+#include "pgiEnvironmentShading.h"
+#include "pgiMaterial.h"
+#include "pgiSoftShadows.h"
+#include "vtkPGILighting.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+
+#include <atomic>
+#include <cmath>
+#include <sstream>
+
+vtkStandardNewMacro(vtkPGIGlobalIllumination);
+vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Lighting, vtkPGILighting);
+
+vtkPGIGlobalIllumination::vtkPGIGlobalIllumination()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetAlbedoArrayName("Albedo");
+}
+
+vtkPGIGlobalIllumination::~vtkPGIGlobalIllumination()
+{
+  this->SetLighting(nullptr);
+  this->SetAlbedoArrayName(nullptr);
+}
+
+vtkMTimeType vtkPGIGlobalIllumination::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->Lighting)
+  {
+    t = std::max(t, this->Lighting->GetMTime());
+  }
+  return t;
+}
+
+void vtkPGIGlobalIllumination::AddBlockerPlane(const double origin[3], const double normal[3])
+{
+  this->BlockerPlanes.insert(this->BlockerPlanes.end(), origin, origin + 3);
+  this->BlockerPlanes.insert(this->BlockerPlanes.end(), normal, normal + 3);
+  this->Modified();
+}
+
+void vtkPGIGlobalIllumination::RemoveAllBlockerPlanes()
+{
+  this->BlockerPlanes.clear();
+  this->Modified();
+}
+
+void vtkPGIGlobalIllumination::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Lighting: " << this->Lighting << "\n";
+  os << indent << "Order: " << this->Order << "\n";
+  os << indent << "ExpMethod: " << this->ExpMethod << " (degree " << this->ExpDegree << ")\n";
+  os << indent << "AccumulationOrder: " << this->AccumulationOrder << "\n";
+  os << indent << "WindowSize: " << this->WindowSize << "\n";
+  os << indent << "SelfShadowRules: " << this->SelfShadowRules << "\n";
+  os << indent << "MinBlockerAngle: " << this->MinBlockerAngle << "\n";
+  os << indent << "ShadingPath: " << this->ShadingPath << "\n";
+  os << indent << "Shadows: " << this->Shadows << "\n";
+  os << indent << "BlockerPlanes: " << this->BlockerPlanes.size() / 6 << "\n";
+  os << indent << "DefaultAlbedo: " << this->DefaultAlbedo[0] << " " << this->DefaultAlbedo[1]
+     << " " << this->DefaultAlbedo[2] << "\n";
+  os << indent << "AlbedoArrayName: " << (this->AlbedoArrayName ? this->AlbedoArrayName : "(none)")
+     << "\n";
+}
+
+int vtkPGIGlobalIllumination::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
+  return 1;
+}
+
+int vtkPGIGlobalIllumination::RequestData(
+  vtkInformation*, vtkInformationVector** in, vtkInformationVector* out)
+{
+  this->Plan.clear();
+  vtkPolyData* receivers = vtkPolyData::GetData(in[0]);
+  vtkPolyData* output = vtkPolyData::GetData(out);
+  if (!receivers || receivers->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("No receivers: input 0 is empty.");
+    return 0;
+  }
+  const vtkIdType n = receivers->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    receivers->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      vtkErrorMacro("Receiver " << i << " has a NaN or Inf coordinate.");
+      return 0;
+    }
+  }
+
+  // Blockers: proxies (checked) and planes.
+  proxygi::Blockers blockers;
+  vtkPolyData* proxies =
+    this->GetNumberOfInputConnections(1) ? vtkPolyData::GetData(in[1]) : nullptr;
+  if (proxies && proxies->GetNumberOfPoints() > 0)
+  {
+    vtkDataArray* radius = proxies->GetPointData()->GetArray("Radius");
+    if (!radius)
+    {
+      vtkErrorMacro("The proxies (input 1) need a \"Radius\" point array.");
+      return 0;
+    }
+    // Only leaves block; parents (Level > 0) are for hierarchy cuts.
+    vtkDataArray* level = proxies->GetPointData()->GetArray("Level");
+    for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
+    {
+      double c[3];
+      proxies->GetPoint(i, c);
+      const double r = radius->GetTuple1(i);
+      if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]) ||
+        !std::isfinite(r) || r < 0.0)
+      {
+        vtkErrorMacro("Proxy " << i << " has a NaN, Inf or negative centre or radius.");
+        return 0;
+      }
+      if (level && level->GetTuple1(i) != 0.0)
+      {
+        continue;
+      }
+      blockers.AddSphere(float(c[0]), float(c[1]), float(c[2]), float(r));
+    }
+  }
+  for (std::size_t k = 0; k + 5 < this->BlockerPlanes.size(); k += 6)
+  {
+    const float o[3] = { float(this->BlockerPlanes[k]), float(this->BlockerPlanes[k + 1]),
+      float(this->BlockerPlanes[k + 2]) };
+    const float nn[3] = { float(this->BlockerPlanes[k + 3]), float(this->BlockerPlanes[k + 4]),
+      float(this->BlockerPlanes[k + 5]) };
+    blockers.AddPlane(o, nn);
+  }
+
+  // Light: the environment projected to SH at the shading order.
+  vtkNew<vtkPGILighting> defaultLighting;
+  vtkPGILighting* lighting = this->Lighting ? this->Lighting : defaultLighting.Get();
+  const proxygi::EnvironmentMap* environment = nullptr;
+  std::string error;
+  if (!lighting->GetEnvironment(environment, error))
+  {
+    vtkErrorMacro("Bad environment: " << error);
+    return 0;
+  }
+  const int order = this->Order, n2 = order * order;
+  std::vector<double> lr(n2), lg(n2), lb(n2);
+  environment->ProjectSH(order, lr.data(), lg.data(), lb.data());
+  const proxygi::EnvironmentShading shading(order, lr.data(), lg.data(), lb.data(),
+    this->ShadingPath == SHADING_TABLE ? proxygi::EnvironmentShading::Path::Table
+                                       : proxygi::EnvironmentShading::Path::ProductMatrix);
+
+  // The plan: what this scene needs.
+  const bool runShadows = this->Shadows && (blockers.Spheres() > 0 || blockers.Planes() > 0);
+  {
+    std::ostringstream line;
+    line << "environment light: SH order " << order << ", "
+         << (this->ShadingPath == SHADING_TABLE ? "tabulated L*H(N)" : "product matrix M_L");
+    this->Plan.push_back(line.str());
+  }
+  if (!this->Shadows)
+  {
+    this->Plan.push_back("shadows: off (switched off)");
+  }
+  else if (!runShadows)
+  {
+    this->Plan.push_back("shadows: skipped (no proxies and no blocker planes)");
+  }
+  const bool localLights =
+    !lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty();
+  this->Plan.push_back(localLights
+      ? "local lights: present in the lighting but NOT simulated (not in this filter yet)"
+      : "local lights: skipped (none in the lighting)");
+  this->Plan.push_back("indirect light: not simulated (not in this filter yet)");
+
+  vtkSmartPointer<vtkDataArray> normals = receivers->GetPointData()->GetNormals();
+  if (!normals)
+  {
+    vtkNew<vtkPolyDataNormals> computer;
+    computer->SetInputData(receivers);
+    computer->SplittingOff();
+    computer->Update();
+    if (computer->GetOutput()->GetNumberOfPoints() != n ||
+      !computer->GetOutput()->GetPointData()->GetNormals())
+    {
+      vtkErrorMacro("Could not compute receiver normals (no polygons?); give point normals.");
+      return 0;
+    }
+    normals = computer->GetOutput()->GetPointData()->GetNormals();
+  }
+
+  proxygi::SoftShadowSettings settings;
+  settings.Order = order;
+  settings.AccumulationOrder = this->AccumulationOrder;
+  settings.Exp.Method = static_cast<proxygi::sh::ExpMethod>(this->ExpMethod);
+  settings.Exp.Degree = this->ExpDegree;
+  settings.WindowH = this->WindowSize;
+  settings.MinAngle = static_cast<float>(this->MinBlockerAngle);
+  settings.SelfShadowRules = this->SelfShadowRules;
+  const proxygi::SoftShadows shadows(settings);
+
+  vtkNew<vtkFloatArray> direct, total, visibility;
+  direct->SetName("DirectShadowed");
+  total->SetName("Radiance");
+  visibility->SetName("Visibility");
+  direct->SetNumberOfComponents(3);
+  total->SetNumberOfComponents(3);
+  visibility->SetNumberOfComponents(n2);
+  direct->SetNumberOfTuples(n);
+  total->SetNumberOfTuples(n);
+  visibility->SetNumberOfTuples(n);
+
+  std::atomic<vtkIdType> shadowed(0), failures(0);
+  const vtkIdType blocks = std::min<vtkIdType>(50, n);
+  for (vtkIdType b = 0; b < blocks && !this->GetAbortExecute(); ++b)
+  {
+    vtkSMPTools::For(n * b / blocks, n * (b + 1) / blocks,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        float g[proxygi::sh::MaxCoefficients];
+        vtkIdType localShadowed = 0, localFailures = 0;
+        for (vtkIdType i = first; i < last; ++i)
+        {
+          double pd[3], nd[3], albedo[3];
+          receivers->GetPoint(i, pd);
+          normals->GetTuple(i, nd);
+          if (!(vtkMath::Normalize(nd) > 0.0))
+          {
+            nd[0] = nd[1] = 0.0;
+            nd[2] = 1.0;
+          }
+          const float p[3] = { float(pd[0]), float(pd[1]), float(pd[2]) };
+          const float nf[3] = { float(nd[0]), float(nd[1]), float(nd[2]) };
+          float rgb[3];
+          if (runShadows)
+          {
+            proxygi::sh::Status status;
+            if (shadows.Visibility(p, nf, blockers, g, status) > 0)
+            {
+              ++localShadowed;
+            }
+            if (status != proxygi::sh::Status::Ok)
+            {
+              ++localFailures;
+              proxygi::sh::SetConstant(order, 1.0f, g);
+            }
+            shading.Shade(nf, g, rgb);
+          }
+          else
+          {
+            proxygi::sh::SetConstant(order, 1.0f, g);
+            shading.ShadeUnshadowed(nf, rgb);
+          }
+          proxygi::AlbedoOf(receivers, this->AlbedoArrayName, i, this->DefaultAlbedo, albedo);
+          for (int k = 0; k < 3; ++k)
+          {
+            rgb[k] = static_cast<float>(rgb[k] * albedo[k]);
+          }
+          direct->SetTypedTuple(i, rgb);
+          total->SetTypedTuple(i, rgb);
+          visibility->SetTypedTuple(i, g);
+        }
+        shadowed += localShadowed;
+        failures += localFailures;
+      });
+    this->UpdateProgress(static_cast<double>(b + 1) / blocks);
+  }
+  if (failures > 0)
+  {
+    vtkWarningMacro(<< failures
+                    << " receivers met non-finite SH values; they were left unshadowed.");
+  }
+  if (runShadows)
+  {
+    std::ostringstream line;
+    line << "shadows: " << blockers.Spheres() << " proxy spheres, " << blockers.Planes()
+         << " planes, exp " << proxygi::sh::ExpMethodName(settings.Exp.Method) << "; "
+         << shadowed.load() << " of " << n
+         << " receivers had blockers in view (the others skipped the exp)";
+    this->Plan.push_back(line.str());
+  }
+
+  output->ShallowCopy(receivers);
+  output->GetPointData()->AddArray(direct);
+  output->GetPointData()->AddArray(total);
+  output->GetPointData()->AddArray(visibility);
+  if (!receivers->GetPointData()->GetNormals())
+  {
+    output->GetPointData()->SetNormals(normals);
+  }
+  vtkNew<vtkStringArray> plan;
+  plan->SetName("Plan");
+  for (const std::string& line : this->Plan)
+  {
+    plan->InsertNextValue(line);
+  }
+  output->GetFieldData()->AddArray(plan);
+  return 1;
+}

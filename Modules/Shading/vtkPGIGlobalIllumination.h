@@ -1,0 +1,137 @@
+/**
+ * @class   vtkPGIGlobalIllumination
+ * @brief   Per-vertex global illumination on the CPU from sphere proxies and
+ *          SH lighting: the reference implementation the GPU paths match.
+ *
+ * Input 0: the receivers (vtkPolyData; point normals used if present, else
+ * computed). Input 1 (optional): the proxies, points with a "Radius" array
+ * (vtkPGISphereSetApproximation's output or any such polydata). Light: a
+ * vtkPGILighting (its environment is projected to SH once per change).
+ * Infinite blocker planes (a ground) can be added with AddBlockerPlane.
+ *
+ * Output: the receivers with point arrays
+ * | array | components | what |
+ * |---|---|---|
+ * | DirectShadowed | 3 | environment light through SH soft shadows (exit radiance) |
+ * | Radiance | 3 | the sum of the effects that ran |
+ * | Visibility | n^2 | the SH visibility vector (relight without recomputing) |
+ * and a field-data string array "Plan": which effects ran and why.
+ *
+ * | property | default | trade |
+ * |---|---|---|
+ * | Order | 4 | 3-6; cost ~n^2 per blocker, ~n^4-n^5 per receiver for exp |
+ * | ExpMethod | HYB | OL faster, PS* more accurate (Documentation/AccuracyTime.md) |
+ * | AccumulationOrder | 0 (= Order) | accumulate higher, truncate after exp |
+ * | WindowSize | 0 (off) | cosine window h on the visibility; -1 = 2n |
+ * | SelfShadowRules | on | SHEXP 6.2 replacement rules, made continuous |
+ * | ShadingPath | Table | Table (fixed light) or ProductMatrix (light changing per frame) |
+ * | Shadows | on | off: unshadowed environment light |
+ *
+ * Simulate only what the scene needs: shadows run only when there are
+ * blockers; per receiver, the exp runs only when a blocker subtends more than
+ * MinBlockerAngle after the self-shadow rules (receivers with none get g = 1
+ * at no cost). The Plan array says what ran, what was skipped, and why.
+ * Indirect light and local lights are not in this filter yet: when the
+ * lighting asks for local lights, the plan says they were not simulated.
+ *
+ * Errors: no receivers, NaN/Inf in receivers or proxies, proxies without a
+ * Radius array, a bad environment.
+ */
+#ifndef vtkPGIGlobalIllumination_h
+#define vtkPGIGlobalIllumination_h
+
+#include "ProxyGIShadingModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string>
+#include <vector>
+
+class vtkPGILighting;
+
+class PROXYGISHADING_EXPORT vtkPGIGlobalIllumination : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkPGIGlobalIllumination* New();
+  vtkTypeMacro(vtkPGIGlobalIllumination, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  virtual void SetLighting(vtkPGILighting* lighting);
+  vtkGetObjectMacro(Lighting, vtkPGILighting);
+
+  void SetProxiesConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+  void SetProxiesData(vtkDataObject* data) { this->SetInputData(1, data); }
+
+  vtkSetClampMacro(Order, int, 2, 8);
+  vtkGetMacro(Order, int);
+  enum
+  {
+    EXP_PS = 0,
+    EXP_PS_STAR = 1,
+    EXP_OL = 2,
+    EXP_HYB = 3
+  };
+  vtkSetClampMacro(ExpMethod, int, EXP_PS, EXP_HYB);
+  vtkGetMacro(ExpMethod, int);
+  vtkSetClampMacro(ExpDegree, int, 1, 16);
+  vtkGetMacro(ExpDegree, int);
+  vtkSetClampMacro(AccumulationOrder, int, 0, 8);
+  vtkGetMacro(AccumulationOrder, int);
+  vtkSetMacro(WindowSize, double);
+  vtkGetMacro(WindowSize, double);
+  vtkSetMacro(SelfShadowRules, bool);
+  vtkGetMacro(SelfShadowRules, bool);
+  vtkBooleanMacro(SelfShadowRules, bool);
+  vtkSetClampMacro(MinBlockerAngle, double, 0.0, 0.5);
+  vtkGetMacro(MinBlockerAngle, double);
+  enum
+  {
+    SHADING_TABLE = 0,
+    SHADING_PRODUCT_MATRIX = 1
+  };
+  vtkSetClampMacro(ShadingPath, int, SHADING_TABLE, SHADING_PRODUCT_MATRIX);
+  vtkGetMacro(ShadingPath, int);
+  vtkSetMacro(Shadows, bool);
+  vtkGetMacro(Shadows, bool);
+  vtkBooleanMacro(Shadows, bool);
+  vtkSetVector3Macro(DefaultAlbedo, double);
+  vtkGetVector3Macro(DefaultAlbedo, double);
+  vtkSetStringMacro(AlbedoArrayName);
+  vtkGetStringMacro(AlbedoArrayName);
+
+  /// Infinite planes that block the half-space beneath them (a ground).
+  void AddBlockerPlane(const double origin[3], const double normal[3]);
+  void RemoveAllBlockerPlanes();
+
+  /// The plan of the last execution, one line per decision.
+  const std::vector<std::string>& GetPlan() const { return this->Plan; }
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkPGIGlobalIllumination();
+  ~vtkPGIGlobalIllumination() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkPGILighting* Lighting = nullptr;
+  int Order = 4;
+  int ExpMethod = EXP_HYB;
+  int ExpDegree = 2;
+  int AccumulationOrder = 0;
+  double WindowSize = 0.0;
+  bool SelfShadowRules = true;
+  double MinBlockerAngle = 0.002;
+  int ShadingPath = SHADING_TABLE;
+  bool Shadows = true;
+  double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
+  char* AlbedoArrayName = nullptr;
+  std::vector<double> BlockerPlanes; // origin, normal
+  std::vector<std::string> Plan;
+
+private:
+  vtkPGIGlobalIllumination(const vtkPGIGlobalIllumination&) = delete;
+  void operator=(const vtkPGIGlobalIllumination&) = delete;
+};
+
+#endif
