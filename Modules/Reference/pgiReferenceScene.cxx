@@ -1,6 +1,7 @@
 #include "pgiReferenceScene.h"
 
 #include "pgiMaterial.h"
+#include "vtkPGILighting.h"
 
 #include "vtkDataArray.h"
 #include "vtkNew.h"
@@ -88,6 +89,21 @@ bool AddProxySpheres(ReferenceTracer& tracer, vtkPolyData* proxies, const double
     }
   }
   return true;
+}
+
+void AddLocalLights(ReferenceTracer& tracer, vtkPGILighting* lighting)
+{
+  for (const auto& l : lighting->GetSphereLights())
+  {
+    const float radiance[3] = { float(l.Radiance[0]), float(l.Radiance[1]), float(l.Radiance[2]) };
+    tracer.AddSphereLight(l.Center, l.Radius, radiance);
+  }
+  for (const auto& l : lighting->GetPointLights())
+  {
+    const float intensity[3] = { float(l.Intensity[0]), float(l.Intensity[1]),
+      float(l.Intensity[2]) };
+    tracer.AddPointLight(l.Position, intensity);
+  }
 }
 
 } // namespace proxygi

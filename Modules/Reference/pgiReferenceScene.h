@@ -12,6 +12,7 @@
 
 #include <string>
 
+class vtkPGILighting;
 class vtkPolyData;
 
 namespace proxygi
@@ -28,6 +29,8 @@ bool AddPolyData(ReferenceTracer& tracer, vtkPolyData* mesh, const double defaul
 bool AddProxySpheres(ReferenceTracer& tracer, vtkPolyData* proxies, const double defaultAlbedo[3],
   const char* albedoArray, std::string& error);
 
+/// Adds the lighting's spherical and point lights to the tracer.
+void AddLocalLights(ReferenceTracer& tracer, vtkPGILighting* lighting);
 } // namespace proxygi
 
 #endif

@@ -133,17 +133,7 @@ int vtkPGIReferenceImage::RequestData(
         tracer, vtkPolyData::GetData(in[0], c), this->DefaultAlbedo, this->AlbedoArrayName, error);
     }
   }
-  for (const auto& l : lighting->GetSphereLights())
-  {
-    const float radiance[3] = { float(l.Radiance[0]), float(l.Radiance[1]), float(l.Radiance[2]) };
-    tracer.AddSphereLight(l.Center, l.Radius, radiance);
-  }
-  for (const auto& l : lighting->GetPointLights())
-  {
-    const float intensity[3] = { float(l.Intensity[0]), float(l.Intensity[1]),
-      float(l.Intensity[2]) };
-    tracer.AddPointLight(l.Position, intensity);
-  }
+  proxygi::AddLocalLights(tracer, lighting);
   if (!ok || !tracer.Commit(error))
   {
     vtkErrorMacro("Cannot build the scene: " << error);
