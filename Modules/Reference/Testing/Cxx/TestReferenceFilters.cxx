@@ -178,6 +178,22 @@ int TestReferenceFilters(int, char*[])
     PGI_CHECK(Fails(r));
   }
   {
+    // Points but no surfaces anywhere: an empty scene.
+    vtkNew<vtkPolyData> cloud;
+    vtkNew<vtkPoints> points;
+    points->InsertNextPoint(0, 0, 0);
+    points->InsertNextPoint(1, 0, 0);
+    cloud->SetPoints(points);
+    vtkNew<vtkFloatArray> normals;
+    normals->SetNumberOfComponents(3);
+    normals->InsertNextTuple3(0, 0, 1);
+    normals->InsertNextTuple3(0, 0, 1);
+    cloud->GetPointData()->SetNormals(normals);
+    vtkNew<vtkPGIReferenceIllumination> r;
+    r->SetInputData(cloud);
+    PGI_CHECK(Fails(r));
+  }
+  {
     vtkNew<vtkPGIReferenceIllumination> r;
     r->SetInputData(ground);
     r->UseProxiesOn(); // no proxies connected
