@@ -86,9 +86,17 @@ int SoftShadows::Visibility(
   status = sh::Status::Ok;
   int used = 0;
   const float sinMin = std::sin(this->Settings.MinAngle);
-  auto accumulate = [&](float theta, float dx, float dy, float dz)
+  const bool ratios = !b.Ratio.empty();
+  auto accumulate = [&](float theta, float dx, float dy, float dz, const float* ratio)
   {
     tables.CapLog(theta, zh);
+    if (ratio)
+    {
+      for (int l = 0; l < order; ++l)
+      {
+        zh[l] *= ratio[l];
+      }
+    }
     sh::RotateScaledZonal(acc, zh, dx, dy, dz, v);
     for (int i = 0; i < a2; ++i)
     {
@@ -115,7 +123,8 @@ int SoftShadows::Visibility(
       continue;
     }
     const float sinTheta = std::min(1.0f, r / d);
-    accumulate(std::asin(sinTheta), dx / d, dy / d, dz / d);
+    accumulate(std::asin(sinTheta), dx / d, dy / d, dz / d,
+      ratios && acc == order ? &b.Ratio[s * order] : nullptr);
   }
   for (std::size_t k = 0; k < b.Planes(); ++k)
   {
@@ -129,7 +138,7 @@ int SoftShadows::Visibility(
     {
       continue;
     }
-    accumulate(static_cast<float>(sh::CapTables::MaxAngle), -pn[0], -pn[1], -pn[2]);
+    accumulate(static_cast<float>(sh::CapTables::MaxAngle), -pn[0], -pn[1], -pn[2], nullptr);
   }
   if (used == 0)
   {
@@ -144,6 +153,122 @@ int SoftShadows::Visibility(
     sh::Window(order, g, this->Settings.WindowH < 0.0 ? 0.0 : this->Settings.WindowH);
   }
   return used;
+}
+
+bool ProxyHierarchy::Finish()
+{
+  const int count = static_cast<int>(this->X.size());
+  this->Children.assign(count, {});
+  this->Roots.clear();
+  for (int i = 0; i < count; ++i)
+  {
+    const int parent = this->Parent[i];
+    if (parent < 0)
+    {
+      this->Roots.push_back(i);
+    }
+    else if (parent >= count || parent == i || this->Level[parent] <= this->Level[i])
+    {
+      return false;
+    }
+    else
+    {
+      this->Children[parent].push_back(i);
+    }
+  }
+  return true;
+}
+
+namespace
+{
+// Scaled log-visibility ZH and direction of a (replaced) sphere from p.
+bool SphereLog(const sh::CapTables& tables, const float p[3], const float n[3], float c[3], float r,
+  bool rules, float* zh, float dir[3])
+{
+  if (rules && !ReplaceBlocker(p, n, c, r))
+  {
+    return false;
+  }
+  const float d[3] = { c[0] - p[0], c[1] - p[1], c[2] - p[2] };
+  const float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(len > 0.0f) || !(r > 0.0f))
+  {
+    return false;
+  }
+  tables.CapLog(std::asin(std::min(1.0f, r / len)), zh);
+  for (int k = 0; k < 3; ++k)
+  {
+    dir[k] = d[k] / len;
+  }
+  return true;
+}
+} // namespace
+
+Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, const float p[3],
+  const float n[3], float maxAngle, int order, bool rules)
+{
+  Blockers cut;
+  const sh::CapTables& tables = sh::CapTables::Get(order);
+  const int n2 = sh::NumCoefficients(order);
+  const float sinMax = std::sin(maxAngle);
+  std::vector<int> stack(h.Roots.rbegin(), h.Roots.rend());
+  float zh[sh::MaxOrder], dir[3], fb[sh::MaxCoefficients], fd[sh::MaxCoefficients],
+    v[sh::MaxCoefficients];
+  while (!stack.empty())
+  {
+    const int i = stack.back();
+    stack.pop_back();
+    const float dx = h.X[i] - pR[0], dy = h.Y[i] - pR[1], dz = h.Z[i] - pR[2];
+    const float dist = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const bool leaf = h.Children[i].empty();
+    if (!leaf && !(h.R[i] < sinMax * (dist - rR)))
+    {
+      stack.insert(stack.end(), h.Children[i].rbegin(), h.Children[i].rend());
+      continue;
+    }
+    cut.AddSphere(h.X[i], h.Y[i], h.Z[i], h.R[i]);
+    std::vector<float> ratio(order, 1.0f);
+    float c[3] = { h.X[i], h.Y[i], h.Z[i] };
+    if (!leaf && SphereLog(tables, p, n, c, h.R[i], rules, zh, dir))
+    {
+      // Bounding log at p, and the sum of its leaves' logs at p.
+      sh::RotateScaledZonal(order, zh, dir[0], dir[1], dir[2], fb);
+      sh::Fill(fd, n2, 0.0f);
+      std::vector<int> below(h.Children[i]);
+      while (!below.empty())
+      {
+        const int j = below.back();
+        below.pop_back();
+        if (!h.Children[j].empty())
+        {
+          below.insert(below.end(), h.Children[j].begin(), h.Children[j].end());
+          continue;
+        }
+        float cj[3] = { h.X[j], h.Y[j], h.Z[j] };
+        if (SphereLog(tables, p, n, cj, h.R[j], rules, zh, dir))
+        {
+          sh::RotateScaledZonal(order, zh, dir[0], dir[1], dir[2], v);
+          for (int q = 0; q < n2; ++q)
+          {
+            fd[q] += v[q];
+          }
+        }
+      }
+      // Least-squares per-band scale of the bounding log onto the detailed one.
+      for (int l = 0; l < order; ++l)
+      {
+        float num = 0.0f, den = 0.0f;
+        for (int q = l * l; q < (l + 1) * (l + 1); ++q)
+        {
+          num += fb[q] * fd[q];
+          den += fb[q] * fb[q];
+        }
+        ratio[l] = den > 0.0f ? num / den : 1.0f;
+      }
+    }
+    cut.Ratio.insert(cut.Ratio.end(), ratio.begin(), ratio.end());
+  }
+  return cut;
 }
 
 } // namespace proxygi

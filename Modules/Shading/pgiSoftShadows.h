@@ -37,6 +37,9 @@ namespace proxygi
 struct PROXYGISHADING_EXPORT Blockers
 {
   std::vector<float> X, Y, Z, R;
+  /// Optional per-band ratio vectors (SHEXP eq. 37), Order values per sphere;
+  /// empty: all 1. Hierarchy cuts set them.
+  std::vector<float> Ratio;
   std::vector<float> PlaneOrigin, PlaneNormal; // 3 floats each per plane
   void AddSphere(float x, float y, float z, float r);
   void AddPlane(const float origin[3], const float normal[3]);
@@ -56,6 +59,31 @@ struct PROXYGISHADING_EXPORT SoftShadowSettings
   float MinAngle = 0.002f;
   bool SelfShadowRules = true;
 };
+
+/**
+ * A sphere hierarchy over the leaf proxies (Level 0 = leaves; every parent
+ * bounds its children), as the Proxies module writes it.
+ */
+struct PROXYGISHADING_EXPORT ProxyHierarchy
+{
+  std::vector<float> X, Y, Z, R;
+  std::vector<int> Level, Parent;
+  std::vector<std::vector<int>> Children; // filled by Finish()
+  std::vector<int> Roots;
+  /// Builds children and roots from Parent; false if the links are broken.
+  bool Finish();
+};
+
+/**
+ * The blockers one receiver cluster uses (SHEXP section 6.3): the cut of
+ * the hierarchy whose nodes subtend less than maxAngle from the cluster's
+ * bounding sphere (centre pR, radius rR), each with the per-band ratio vector
+ * that best scales its bounding log-visibility to the summed log-visibility
+ * of its leaves, both seen from the cluster's central receiver (p, n).
+ * Leaves in the cut keep ratio 1.
+ */
+PROXYGISHADING_EXPORT Blockers CutHierarchy(const ProxyHierarchy& hierarchy, const float pR[3],
+  float rR, const float p[3], const float n[3], float maxAngle, int order, bool selfShadowRules);
 
 /**
  * Applies the replacement rules to one sphere for receiver p, normal n (unit).

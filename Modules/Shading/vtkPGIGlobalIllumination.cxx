@@ -115,8 +115,10 @@ int vtkPGIGlobalIllumination::RequestData(
     }
   }
 
-  // Blockers: proxies (checked) and planes.
+  // Blockers: proxies (checked) and planes; the hierarchy when asked for.
   proxygi::Blockers blockers;
+  proxygi::ProxyHierarchy hierarchy;
+  bool useHierarchy = false;
   vtkPolyData* proxies =
     this->GetNumberOfInputConnections(1) ? vtkPolyData::GetData(in[1]) : nullptr;
   if (proxies && proxies->GetNumberOfPoints() > 0)
@@ -129,6 +131,8 @@ int vtkPGIGlobalIllumination::RequestData(
     }
     // Only leaves block; parents (Level > 0) are for hierarchy cuts.
     vtkDataArray* level = proxies->GetPointData()->GetArray("Level");
+    vtkDataArray* parent = proxies->GetPointData()->GetArray("Parent");
+    useHierarchy = this->HierarchyAngle > 0.0 && level && parent;
     for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
     {
       double c[3];
@@ -140,12 +144,27 @@ int vtkPGIGlobalIllumination::RequestData(
         vtkErrorMacro("Proxy " << i << " has a NaN, Inf or negative centre or radius.");
         return 0;
       }
+      if (useHierarchy)
+      {
+        hierarchy.X.push_back(float(c[0]));
+        hierarchy.Y.push_back(float(c[1]));
+        hierarchy.Z.push_back(float(c[2]));
+        hierarchy.R.push_back(float(r));
+        hierarchy.Level.push_back(static_cast<int>(level->GetTuple1(i)));
+        hierarchy.Parent.push_back(static_cast<int>(parent->GetTuple1(i)));
+      }
       if (level && level->GetTuple1(i) != 0.0)
       {
         continue;
       }
       blockers.AddSphere(float(c[0]), float(c[1]), float(c[2]), float(r));
     }
+  }
+  if (useHierarchy && !hierarchy.Finish())
+  {
+    vtkErrorMacro("The proxies' Parent array does not form a hierarchy (a parent must have a "
+                  "higher Level than its child).");
+    return 0;
   }
   for (std::size_t k = 0; k + 5 < this->BlockerPlanes.size(); k += 6)
   {
@@ -233,6 +252,113 @@ int vtkPGIGlobalIllumination::RequestData(
   total->SetNumberOfTuples(n);
   visibility->SetNumberOfTuples(n);
 
+  // Receiver clusters and their hierarchy cuts (one blocker list each).
+  std::vector<int> clusterOf;
+  std::vector<proxygi::Blockers> clusterBlockers;
+  if (runShadows && useHierarchy)
+  {
+    const int clusters = static_cast<int>(
+      std::max<vtkIdType>(1, (n + this->ReceiversPerCluster - 1) / this->ReceiversPerCluster));
+    std::vector<double> centres(3 * clusters);
+    for (int k = 0; k < clusters; ++k)
+    {
+      receivers->GetPoint(n * k / clusters, &centres[3 * k]);
+    }
+    clusterOf.assign(n, 0);
+    for (int iteration = 0; iteration < 4; ++iteration) // Lloyd
+    {
+      vtkSMPTools::For(0, n,
+        [&](vtkIdType first, vtkIdType last)
+        {
+          for (vtkIdType i = first; i < last; ++i)
+          {
+            double x[3];
+            receivers->GetPoint(i, x);
+            double best = VTK_DOUBLE_MAX;
+            for (int k = 0; k < clusters; ++k)
+            {
+              const double d = vtkMath::Distance2BetweenPoints(x, &centres[3 * k]);
+              if (d < best)
+              {
+                best = d;
+                clusterOf[i] = k;
+              }
+            }
+          }
+        });
+      std::vector<double> sum(3 * clusters, 0.0);
+      std::vector<vtkIdType> count(clusters, 0);
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        double x[3];
+        receivers->GetPoint(i, x);
+        for (int c = 0; c < 3; ++c)
+        {
+          sum[3 * clusterOf[i] + c] += x[c];
+        }
+        ++count[clusterOf[i]];
+      }
+      for (int k = 0; k < clusters; ++k)
+      {
+        for (int c = 0; count[k] && c < 3; ++c)
+        {
+          centres[3 * k + c] = sum[3 * k + c] / count[k];
+        }
+      }
+    }
+    // Per cluster: bounding sphere, central receiver, cut.
+    std::vector<double> radius(clusters, 0.0);
+    std::vector<vtkIdType> central(clusters, -1);
+    std::vector<double> centralDistance(clusters, VTK_DOUBLE_MAX);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double x[3];
+      receivers->GetPoint(i, x);
+      const int k = clusterOf[i];
+      const double d2 = vtkMath::Distance2BetweenPoints(x, &centres[3 * k]);
+      radius[k] = std::max(radius[k], std::sqrt(d2));
+      if (d2 < centralDistance[k])
+      {
+        centralDistance[k] = d2;
+        central[k] = i;
+      }
+    }
+    clusterBlockers.resize(clusters);
+    const float maxAngle = static_cast<float>(vtkMath::RadiansFromDegrees(this->HierarchyAngle));
+    std::size_t cutTotal = 0;
+    int used = 0;
+    for (int k = 0; k < clusters; ++k)
+    {
+      if (central[k] < 0)
+      {
+        continue;
+      }
+      double pc[3], nc[3];
+      receivers->GetPoint(central[k], pc);
+      normals->GetTuple(central[k], nc);
+      vtkMath::Normalize(nc);
+      const float pR[3] = { float(centres[3 * k]), float(centres[3 * k + 1]),
+        float(centres[3 * k + 2]) };
+      const float pf[3] = { float(pc[0]), float(pc[1]), float(pc[2]) };
+      const float nf[3] = { float(nc[0]), float(nc[1]), float(nc[2]) };
+      clusterBlockers[k] = proxygi::CutHierarchy(
+        hierarchy, pR, float(radius[k]), pf, nf, maxAngle, order, this->SelfShadowRules);
+      clusterBlockers[k].PlaneOrigin = blockers.PlaneOrigin;
+      clusterBlockers[k].PlaneNormal = blockers.PlaneNormal;
+      cutTotal += clusterBlockers[k].Spheres();
+      ++used;
+    }
+    std::ostringstream line;
+    line << "hierarchy: " << used << " receiver clusters, cuts of "
+         << (used ? static_cast<double>(cutTotal) / used : 0.0) << " spheres on average (of "
+         << blockers.Spheres() << " leaves) at " << this->HierarchyAngle << " degrees";
+    this->Plan.push_back(line.str());
+  }
+  else if (this->HierarchyAngle > 0.0)
+  {
+    this->Plan.push_back("hierarchy: not used (the proxies have no Level/Parent arrays)");
+  }
+
   std::atomic<vtkIdType> shadowed(0), failures(0);
   const vtkIdType blocks = std::min<vtkIdType>(50, n);
   for (vtkIdType b = 0; b < blocks && !this->GetAbortExecute(); ++b)
@@ -258,7 +384,9 @@ int vtkPGIGlobalIllumination::RequestData(
           if (runShadows)
           {
             proxygi::sh::Status status;
-            if (shadows.Visibility(p, nf, blockers, g, status) > 0)
+            const proxygi::Blockers& mine =
+              clusterOf.empty() ? blockers : clusterBlockers[clusterOf[i]];
+            if (shadows.Visibility(p, nf, mine, g, status) > 0)
             {
               ++localShadowed;
             }

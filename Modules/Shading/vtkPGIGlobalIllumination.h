@@ -26,6 +26,10 @@
  * | SelfShadowRules | on | SHEXP 6.2 replacement rules, made continuous |
  * | ShadingPath | Table | Table (fixed light) or ProductMatrix (light changing per frame) |
  * | Shadows | on | off: unshadowed environment light |
+ * | HierarchyAngle | 0 (off) | degrees; with a proxy hierarchy (Level/Parent arrays), receivers are
+ * clustered and each cluster uses the hierarchy cut whose nodes subtend less than this, with ratio
+ * vectors (SHEXP 6.3); 20-30 is the paper's range | | ReceiversPerCluster | 256 | cluster size for
+ * hierarchy cuts |
  *
  * Simulate only what the scene needs: shadows run only when there are
  * blockers; per receiver, the exp runs only when a blocker subtends more than
@@ -90,6 +94,10 @@ public:
   };
   vtkSetClampMacro(ShadingPath, int, SHADING_TABLE, SHADING_PRODUCT_MATRIX);
   vtkGetMacro(ShadingPath, int);
+  vtkSetClampMacro(HierarchyAngle, double, 0.0, 89.0);
+  vtkGetMacro(HierarchyAngle, double);
+  vtkSetClampMacro(ReceiversPerCluster, int, 1, 1 << 20);
+  vtkGetMacro(ReceiversPerCluster, int);
   vtkSetMacro(Shadows, bool);
   vtkGetMacro(Shadows, bool);
   vtkBooleanMacro(Shadows, bool);
@@ -124,6 +132,8 @@ protected:
   double MinBlockerAngle = 0.002;
   int ShadingPath = SHADING_TABLE;
   bool Shadows = true;
+  double HierarchyAngle = 0.0;
+  int ReceiversPerCluster = 256;
   double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
   char* AlbedoArrayName = nullptr;
   std::vector<double> BlockerPlanes; // origin, normal
