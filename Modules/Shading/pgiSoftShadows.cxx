@@ -9,16 +9,22 @@
 namespace proxygi
 {
 
-void Blockers::AddSphere(float x, float y, float z, float r)
+void Blockers::AddSphere(float x, float y, float z, float r, const float* albedo)
 {
   this->X.push_back(x);
   this->Y.push_back(y);
   this->Z.push_back(z);
   this->R.push_back(r);
+  const float black[3] = { 0, 0, 0 };
+  const float* a = albedo ? albedo : black;
+  this->Albedo.insert(this->Albedo.end(), a, a + 3);
 }
 
-void Blockers::AddPlane(const float origin[3], const float normal[3])
+void Blockers::AddPlane(const float origin[3], const float normal[3], const float* albedo)
 {
+  const float black[3] = { 0, 0, 0 };
+  const float* a = albedo ? albedo : black;
+  this->PlaneAlbedo.insert(this->PlaneAlbedo.end(), a, a + 3);
   const float len =
     std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
   this->PlaneOrigin.insert(this->PlaneOrigin.end(), origin, origin + 3);
@@ -75,9 +81,13 @@ SoftShadows::SoftShadows(const SoftShadowSettings& settings)
   sh::CapTables::Get(this->AccOrder); // build before the parallel loops
 }
 
-int SoftShadows::Visibility(
-  const float p[3], const float n[3], const Blockers& b, float* g, sh::Status& status) const
+int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& b, float* g,
+  sh::Status& status, std::vector<SeenBlocker>* seen) const
 {
+  if (seen)
+  {
+    seen->clear();
+  }
   const int order = this->Settings.Order, acc = this->AccOrder;
   const int n2 = sh::NumCoefficients(order), a2 = sh::NumCoefficients(acc);
   const sh::CapTables& tables = sh::CapTables::Get(acc);
@@ -122,9 +132,13 @@ int SoftShadows::Visibility(
     {
       continue;
     }
-    const float sinTheta = std::min(1.0f, r / d);
-    accumulate(std::asin(sinTheta), dx / d, dy / d, dz / d,
-      ratios && acc == order ? &b.Ratio[s * order] : nullptr);
+    const float theta = std::asin(std::min(1.0f, r / d));
+    accumulate(
+      theta, dx / d, dy / d, dz / d, ratios && acc == order ? &b.Ratio[s * order] : nullptr);
+    if (seen)
+    {
+      seen->push_back({ static_cast<int>(s), theta, { dx / d, dy / d, dz / d } });
+    }
   }
   for (std::size_t k = 0; k < b.Planes(); ++k)
   {
@@ -139,6 +153,11 @@ int SoftShadows::Visibility(
       continue;
     }
     accumulate(static_cast<float>(sh::CapTables::MaxAngle), -pn[0], -pn[1], -pn[2], nullptr);
+    if (seen)
+    {
+      seen->push_back({ -1 - static_cast<int>(k), static_cast<float>(sh::CapTables::MaxAngle),
+        { -pn[0], -pn[1], -pn[2] } });
+    }
   }
   if (used == 0)
   {
@@ -226,7 +245,7 @@ Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, cons
       stack.insert(stack.end(), h.Children[i].rbegin(), h.Children[i].rend());
       continue;
     }
-    cut.AddSphere(h.X[i], h.Y[i], h.Z[i], h.R[i]);
+    cut.AddSphere(h.X[i], h.Y[i], h.Z[i], h.R[i], h.Albedo.empty() ? nullptr : &h.Albedo[3 * i]);
     std::vector<float> ratio(order, 1.0f);
     float c[3] = { h.X[i], h.Y[i], h.Z[i] };
     if (!leaf && SphereLog(tables, p, n, c, h.R[i], rules, zh, dir))

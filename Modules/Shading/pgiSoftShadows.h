@@ -40,9 +40,11 @@ struct PROXYGISHADING_EXPORT Blockers
   /// Optional per-band ratio vectors (SHEXP eq. 37), Order values per sphere;
   /// empty: all 1. Hierarchy cuts set them.
   std::vector<float> Ratio;
-  std::vector<float> PlaneOrigin, PlaneNormal; // 3 floats each per plane
-  void AddSphere(float x, float y, float z, float r);
-  void AddPlane(const float origin[3], const float normal[3]);
+  /// RGB albedo per sphere (3 floats each), for indirect light; may stay empty.
+  std::vector<float> Albedo;
+  std::vector<float> PlaneOrigin, PlaneNormal, PlaneAlbedo; // 3 floats each per plane
+  void AddSphere(float x, float y, float z, float r, const float* albedo = nullptr);
+  void AddPlane(const float origin[3], const float normal[3], const float* albedo = nullptr);
   std::size_t Spheres() const { return this->X.size(); }
   std::size_t Planes() const { return this->PlaneOrigin.size() / 3; }
 };
@@ -67,6 +69,7 @@ struct PROXYGISHADING_EXPORT SoftShadowSettings
 struct PROXYGISHADING_EXPORT ProxyHierarchy
 {
   std::vector<float> X, Y, Z, R;
+  std::vector<float> Albedo; // 3 per node (parents: their leaves' mean), may be empty
   std::vector<int> Level, Parent;
   std::vector<std::vector<int>> Children; // filled by Finish()
   std::vector<int> Roots;
@@ -92,6 +95,14 @@ PROXYGISHADING_EXPORT Blockers CutHierarchy(const ProxyHierarchy& hierarchy, con
  */
 PROXYGISHADING_EXPORT bool ReplaceBlocker(const float p[3], const float n[3], float c[3], float& r);
 
+/// A blocker as one receiver sees it after the rules (shared with indirect light).
+struct SeenBlocker
+{
+  int Index;    // into Blockers' spheres; -1 - k for plane k
+  float Theta;  // angular radius
+  float Dir[3]; // unit, receiver -> centre (planes: -normal)
+};
+
 class PROXYGISHADING_EXPORT SoftShadows
 {
 public:
@@ -102,10 +113,11 @@ public:
   /**
    * Visibility vector g (Order^2 floats) at receiver p with normal n.
    * Returns the number of blockers accumulated; 0 means g = 1 exactly (no exp
-   * run). status reports NaN/Inf met on the way.
+   * run). status reports NaN/Inf met on the way. `seen`, if given, receives
+   * the blockers as this receiver sees them (for indirect light).
    */
   int Visibility(const float p[3], const float n[3], const Blockers& blockers, float* g,
-    sh::Status& status) const;
+    sh::Status& status, std::vector<SeenBlocker>* seen = nullptr) const;
 
 private:
   SoftShadowSettings Settings;

@@ -2,7 +2,10 @@
 
 #include "pgiEnvironmentMap.h"
 #include "pgiEnvironmentShading.h"
+#include "pgiIndirectLight.h"
 #include "pgiMaterial.h"
+#include "pgiSHLightTables.h"
+#include "pgiSHZonal.h"
 #include "pgiSoftShadows.h"
 #include "vtkPGILighting.h"
 
@@ -52,8 +55,16 @@ vtkMTimeType vtkPGIGlobalIllumination::GetMTime()
 
 void vtkPGIGlobalIllumination::AddBlockerPlane(const double origin[3], const double normal[3])
 {
+  const double black[3] = { 0, 0, 0 };
+  this->AddBlockerPlane(origin, normal, black);
+}
+
+void vtkPGIGlobalIllumination::AddBlockerPlane(
+  const double origin[3], const double normal[3], const double albedo[3])
+{
   this->BlockerPlanes.insert(this->BlockerPlanes.end(), origin, origin + 3);
   this->BlockerPlanes.insert(this->BlockerPlanes.end(), normal, normal + 3);
+  this->BlockerPlanes.insert(this->BlockerPlanes.end(), albedo, albedo + 3);
   this->Modified();
 }
 
@@ -75,7 +86,12 @@ void vtkPGIGlobalIllumination::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinBlockerAngle: " << this->MinBlockerAngle << "\n";
   os << indent << "ShadingPath: " << this->ShadingPath << "\n";
   os << indent << "Shadows: " << this->Shadows << "\n";
-  os << indent << "BlockerPlanes: " << this->BlockerPlanes.size() / 6 << "\n";
+  os << indent << "Indirect: " << this->Indirect << " (operator " << this->IndirectOperator
+     << ")\n";
+  os << indent << "LocalLights: " << this->LocalLights << "\n";
+  os << indent << "HierarchyAngle: " << this->HierarchyAngle << "\n";
+  os << indent << "ReceiversPerCluster: " << this->ReceiversPerCluster << "\n";
+  os << indent << "BlockerPlanes: " << this->BlockerPlanes.size() / 9 << "\n";
   os << indent << "DefaultAlbedo: " << this->DefaultAlbedo[0] << " " << this->DefaultAlbedo[1]
      << " " << this->DefaultAlbedo[2] << "\n";
   os << indent << "AlbedoArrayName: " << (this->AlbedoArrayName ? this->AlbedoArrayName : "(none)")
@@ -132,6 +148,7 @@ int vtkPGIGlobalIllumination::RequestData(
     // Only leaves block; parents (Level > 0) are for hierarchy cuts.
     vtkDataArray* level = proxies->GetPointData()->GetArray("Level");
     vtkDataArray* parent = proxies->GetPointData()->GetArray("Parent");
+    double proxyAlbedo[3];
     useHierarchy = this->HierarchyAngle > 0.0 && level && parent;
     for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
     {
@@ -144,8 +161,12 @@ int vtkPGIGlobalIllumination::RequestData(
         vtkErrorMacro("Proxy " << i << " has a NaN, Inf or negative centre or radius.");
         return 0;
       }
+      proxygi::AlbedoOf(proxies, this->AlbedoArrayName, i, this->DefaultAlbedo, proxyAlbedo);
+      const float albedoF[3] = { float(proxyAlbedo[0]), float(proxyAlbedo[1]),
+        float(proxyAlbedo[2]) };
       if (useHierarchy)
       {
+        hierarchy.Albedo.insert(hierarchy.Albedo.end(), albedoF, albedoF + 3);
         hierarchy.X.push_back(float(c[0]));
         hierarchy.Y.push_back(float(c[1]));
         hierarchy.Z.push_back(float(c[2]));
@@ -157,7 +178,7 @@ int vtkPGIGlobalIllumination::RequestData(
       {
         continue;
       }
-      blockers.AddSphere(float(c[0]), float(c[1]), float(c[2]), float(r));
+      blockers.AddSphere(float(c[0]), float(c[1]), float(c[2]), float(r), albedoF);
     }
   }
   if (useHierarchy && !hierarchy.Finish())
@@ -166,13 +187,14 @@ int vtkPGIGlobalIllumination::RequestData(
                   "higher Level than its child).");
     return 0;
   }
-  for (std::size_t k = 0; k + 5 < this->BlockerPlanes.size(); k += 6)
+  for (std::size_t k = 0; k + 8 < this->BlockerPlanes.size(); k += 9)
   {
-    const float o[3] = { float(this->BlockerPlanes[k]), float(this->BlockerPlanes[k + 1]),
-      float(this->BlockerPlanes[k + 2]) };
-    const float nn[3] = { float(this->BlockerPlanes[k + 3]), float(this->BlockerPlanes[k + 4]),
-      float(this->BlockerPlanes[k + 5]) };
-    blockers.AddPlane(o, nn);
+    float v[9];
+    for (int q = 0; q < 9; ++q)
+    {
+      v[q] = static_cast<float>(this->BlockerPlanes[k + q]);
+    }
+    blockers.AddPlane(v, v + 3, v + 6);
   }
 
   // Light: the environment projected to SH at the shading order.
@@ -193,7 +215,23 @@ int vtkPGIGlobalIllumination::RequestData(
                                        : proxygi::EnvironmentShading::Path::ProductMatrix);
 
   // The plan: what this scene needs.
-  const bool runShadows = this->Shadows && (blockers.Spheres() > 0 || blockers.Planes() > 0);
+  const proxygi::SecondaryLights secondary(order, lr.data(), lg.data(), lb.data(), &blockers);
+  const bool anyBlockers = blockers.Spheres() > 0 || blockers.Planes() > 0;
+  const bool runShadows = this->Shadows && anyBlockers;
+  bool anyAlbedo = false;
+  for (float a : blockers.Albedo)
+  {
+    anyAlbedo = anyAlbedo || a > 0.0f;
+  }
+  for (float a : blockers.PlaneAlbedo)
+  {
+    anyAlbedo = anyAlbedo || a > 0.0f;
+  }
+  const bool dark = lr[0] <= 0.0 && lg[0] <= 0.0 && lb[0] <= 0.0;
+  const bool runIndirect = this->Indirect && anyBlockers && anyAlbedo && !dark;
+  const bool hasLights =
+    !lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty();
+  const bool runLocal = this->LocalLights && hasLights;
   {
     std::ostringstream line;
     line << "environment light: SH order " << order << ", "
@@ -208,12 +246,66 @@ int vtkPGIGlobalIllumination::RequestData(
   {
     this->Plan.push_back("shadows: skipped (no proxies and no blocker planes)");
   }
-  const bool localLights =
-    !lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty();
-  this->Plan.push_back(localLights
-      ? "local lights: present in the lighting but NOT simulated (not in this filter yet)"
-      : "local lights: skipped (none in the lighting)");
-  this->Plan.push_back("indirect light: not simulated (not in this filter yet)");
+  if (!this->Indirect)
+  {
+    this->Plan.push_back("indirect light: off (switched off)");
+  }
+  else if (!runIndirect)
+  {
+    this->Plan.push_back(!anyBlockers ? "indirect light: skipped (no proxies or planes to reflect)"
+        : dark                        ? "indirect light: skipped (the environment is black)"
+               : "indirect light: skipped (every proxy and plane has albedo 0)");
+  }
+  else
+  {
+    this->Plan.push_back(std::string("indirect light: one bounce from the proxies and planes, ") +
+      proxygi::IndirectOperatorName(
+        static_cast<proxygi::IndirectOperator>(this->IndirectOperator)) +
+      " operator, overlap normalisation xi");
+  }
+  if (!this->LocalLights)
+  {
+    this->Plan.push_back("local lights: off (switched off)");
+  }
+  else
+  {
+    std::ostringstream line;
+    line << (runLocal ? "local lights: " : "local lights: skipped (none in the lighting)");
+    if (runLocal)
+    {
+      line << lighting->GetSphereLights().size() << " spherical, "
+           << lighting->GetPointLights().size()
+           << " point (analytic L_H lobes, shadowed by the proxies' visibility)";
+    }
+    this->Plan.push_back(line.str());
+  }
+  const bool needVisibility = anyBlockers && (runShadows || runIndirect || runLocal);
+  // Local lights as spheres: point lights are tiny spheres of equal power.
+  struct LocalSphere
+  {
+    double Center[3], Radius, Radiance[3];
+    bool Point;
+  };
+  std::vector<LocalSphere> locals;
+  if (runLocal)
+  {
+    for (const auto& l : lighting->GetSphereLights())
+    {
+      locals.push_back({ { l.Center[0], l.Center[1], l.Center[2] }, l.Radius,
+        { l.Radiance[0], l.Radiance[1], l.Radiance[2] }, false });
+    }
+    for (const auto& l : lighting->GetPointLights())
+    {
+      locals.push_back({ { l.Position[0], l.Position[1], l.Position[2] }, 0.0,
+        { l.Intensity[0], l.Intensity[1], l.Intensity[2] }, true });
+    }
+  }
+  const proxygi::sh::AnalyticLightTables* lightTables =
+    runLocal ? &proxygi::sh::AnalyticLightTables::Get(order) : nullptr;
+  if (runIndirect)
+  {
+    proxygi::sh::IndirectTables::Get(order); // build before the parallel loops
+  }
 
   vtkSmartPointer<vtkDataArray> normals = receivers->GetPointData()->GetNormals();
   if (!normals)
@@ -241,21 +333,24 @@ int vtkPGIGlobalIllumination::RequestData(
   settings.SelfShadowRules = this->SelfShadowRules;
   const proxygi::SoftShadows shadows(settings);
 
-  vtkNew<vtkFloatArray> direct, total, visibility;
+  vtkNew<vtkFloatArray> direct, indirect, local, total, visibility;
   direct->SetName("DirectShadowed");
+  indirect->SetName("IndirectProxy");
+  local->SetName("LocalLights");
   total->SetName("Radiance");
   visibility->SetName("Visibility");
-  direct->SetNumberOfComponents(3);
-  total->SetNumberOfComponents(3);
+  for (vtkFloatArray* a : { direct.Get(), indirect.Get(), local.Get(), total.Get() })
+  {
+    a->SetNumberOfComponents(3);
+    a->SetNumberOfTuples(n);
+  }
   visibility->SetNumberOfComponents(n2);
-  direct->SetNumberOfTuples(n);
-  total->SetNumberOfTuples(n);
   visibility->SetNumberOfTuples(n);
 
   // Receiver clusters and their hierarchy cuts (one blocker list each).
   std::vector<int> clusterOf;
   std::vector<proxygi::Blockers> clusterBlockers;
-  if (runShadows && useHierarchy)
+  if (needVisibility && useHierarchy)
   {
     const int clusters = static_cast<int>(
       std::max<vtkIdType>(1, (n + this->ReceiversPerCluster - 1) / this->ReceiversPerCluster));
@@ -366,7 +461,9 @@ int vtkPGIGlobalIllumination::RequestData(
     vtkSMPTools::For(n * b / blocks, n * (b + 1) / blocks,
       [&](vtkIdType first, vtkIdType last)
       {
-        float g[proxygi::sh::MaxCoefficients];
+        float g[proxygi::sh::MaxCoefficients], unshadowed[proxygi::sh::MaxCoefficients];
+        proxygi::sh::SetConstant(order, 1.0f, unshadowed);
+        std::vector<proxygi::SeenBlocker> seen;
         vtkIdType localShadowed = 0, localFailures = 0;
         for (vtkIdType i = first; i < last; ++i)
         {
@@ -380,13 +477,14 @@ int vtkPGIGlobalIllumination::RequestData(
           }
           const float p[3] = { float(pd[0]), float(pd[1]), float(pd[2]) };
           const float nf[3] = { float(nd[0]), float(nd[1]), float(nd[2]) };
-          float rgb[3];
-          if (runShadows)
+          float rgb[3], bounce[3] = { 0, 0, 0 }, lit[3] = { 0, 0, 0 };
+          const proxygi::Blockers& mine =
+            clusterOf.empty() ? blockers : clusterBlockers[clusterOf[i]];
+          seen.clear();
+          if (needVisibility)
           {
             proxygi::sh::Status status;
-            const proxygi::Blockers& mine =
-              clusterOf.empty() ? blockers : clusterBlockers[clusterOf[i]];
-            if (shadows.Visibility(p, nf, mine, g, status) > 0)
+            if (shadows.Visibility(p, nf, mine, g, status, runIndirect ? &seen : nullptr) > 0)
             {
               ++localShadowed;
             }
@@ -394,21 +492,68 @@ int vtkPGIGlobalIllumination::RequestData(
             {
               ++localFailures;
               proxygi::sh::SetConstant(order, 1.0f, g);
+              seen.clear();
             }
-            shading.Shade(nf, g, rgb);
           }
           else
           {
             proxygi::sh::SetConstant(order, 1.0f, g);
+          }
+          if (runShadows)
+          {
+            shading.Shade(nf, g, rgb);
+          }
+          else
+          {
             shading.ShadeUnshadowed(nf, rgb);
           }
+          if (runIndirect)
+          {
+            proxygi::IndirectExitRadiance(
+              static_cast<proxygi::IndirectOperator>(this->IndirectOperator), secondary, mine, seen,
+              g[0], nf, bounce);
+          }
+          for (const LocalSphere& l : locals)
+          {
+            double dir[3] = { l.Center[0] - pd[0], l.Center[1] - pd[1], l.Center[2] - pd[2] };
+            const double dist = vtkMath::Normalize(dir);
+            if (!(dist > l.Radius))
+            {
+              continue; // inside an emitter
+            }
+            // Below the table's first node L_H grows as sin^2(theta) with a
+            // fixed shape: evaluate there and scale (point lights: theta -> 0,
+            // radiance I / (pi d^2 sin^2 theta)).
+            const double theta = l.Point ? 0.0 : std::asin(l.Radius / dist);
+            const double theta1 =
+              proxygi::sh::AnalyticLightTables::MaxTheta / (lightTables->GetThetaResolution() - 1);
+            const double thetaEval = std::max(theta, theta1);
+            const double s1 = std::sin(thetaEval);
+            const double scale = l.Point ? 1.0 / (vtkMath::Pi() * dist * dist * s1 * s1)
+                                         : std::pow(std::sin(theta) / s1, 2);
+            const float df[3] = { float(dir[0]), float(dir[1]), float(dir[2]) };
+            float lh[proxygi::sh::MaxCoefficients];
+            lightTables->Evaluate(nf, df, static_cast<float>(thetaEval), lh);
+            const float weight =
+              std::max(0.0f, proxygi::sh::Dot(n2, lh, this->Shadows ? g : unshadowed));
+            for (int k = 0; k < 3; ++k)
+            {
+              lit[k] += static_cast<float>(scale * l.Radiance[k]) * weight;
+            }
+          }
           proxygi::AlbedoOf(receivers, this->AlbedoArrayName, i, this->DefaultAlbedo, albedo);
+          float sum[3];
           for (int k = 0; k < 3; ++k)
           {
             rgb[k] = static_cast<float>(rgb[k] * albedo[k]);
+            bounce[k] = static_cast<float>(bounce[k] * albedo[k]);
+            lit[k] = static_cast<float>(lit[k] * albedo[k]);
+            sum[k] = rgb[k] + bounce[k] + lit[k];
           }
           direct->SetTypedTuple(i, rgb);
-          total->SetTypedTuple(i, rgb);
+          indirect->SetTypedTuple(i, bounce);
+          local->SetTypedTuple(i, lit);
+          total->SetTypedTuple(i, sum);
           visibility->SetTypedTuple(i, g);
         }
         shadowed += localShadowed;
@@ -421,18 +566,20 @@ int vtkPGIGlobalIllumination::RequestData(
     vtkWarningMacro(<< failures
                     << " receivers met non-finite SH values; they were left unshadowed.");
   }
-  if (runShadows)
+  if (needVisibility)
   {
     std::ostringstream line;
-    line << "shadows: " << blockers.Spheres() << " proxy spheres, " << blockers.Planes()
-         << " planes, exp " << proxygi::sh::ExpMethodName(settings.Exp.Method) << "; "
-         << shadowed.load() << " of " << n
-         << " receivers had blockers in view (the others skipped the exp)";
+    line << (runShadows ? "shadows: " : "visibility (for indirect/local lights): ")
+         << blockers.Spheres() << " proxy spheres, " << blockers.Planes() << " planes, exp "
+         << proxygi::sh::ExpMethodName(settings.Exp.Method) << "; " << shadowed.load() << " of "
+         << n << " receivers had blockers in view (the others skipped the exp)";
     this->Plan.push_back(line.str());
   }
 
   output->ShallowCopy(receivers);
   output->GetPointData()->AddArray(direct);
+  output->GetPointData()->AddArray(indirect);
+  output->GetPointData()->AddArray(local);
   output->GetPointData()->AddArray(total);
   output->GetPointData()->AddArray(visibility);
   if (!receivers->GetPointData()->GetNormals())

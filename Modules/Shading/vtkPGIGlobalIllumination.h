@@ -13,9 +13,11 @@
  * | array | components | what |
  * |---|---|---|
  * | DirectShadowed | 3 | environment light through SH soft shadows (exit radiance) |
- * | Radiance | 3 | the sum of the effects that ran |
- * | Visibility | n^2 | the SH visibility vector (relight without recomputing) |
- * and a field-data string array "Plan": which effects ran and why.
+ * | IndirectProxy | 3 | one bounce from the proxies and blocker planes as secondary lights
+ * (unshadowed, Sloan 2007) | | LocalLights | 3 | spherical and point lights of the vtkPGILighting,
+ * shadowed by the same visibility | | Radiance | 3 | the sum of the effects that ran | | Visibility
+ * | n^2 | the SH visibility vector (relight without recomputing) | and a field-data string array
+ * "Plan": which effects ran and why.
  *
  * | property | default | trade |
  * |---|---|---|
@@ -26,17 +28,20 @@
  * | SelfShadowRules | on | SHEXP 6.2 replacement rules, made continuous |
  * | ShadingPath | Table | Table (fixed light) or ProductMatrix (light changing per frame) |
  * | Shadows | on | off: unshadowed environment light |
- * | HierarchyAngle | 0 (off) | degrees; with a proxy hierarchy (Level/Parent arrays), receivers are
- * clustered and each cluster uses the hierarchy cut whose nodes subtend less than this, with ratio
- * vectors (SHEXP 6.3); 20-30 is the paper's range | | ReceiversPerCluster | 256 | cluster size for
- * hierarchy cuts |
+ * | Indirect | on | one-bounce light from the proxies (albedo from their "Albedo" array, else
+ * DefaultAlbedo) and planes | | IndirectOperator | AVERAGED | POINT_SAMPLED (cheapest), AVERAGED
+ * (D(theta)), EXACT (M(theta), rotations) | | LocalLights | on | spherical lights (analytic L_H
+ * table, fitted lobes) and point lights (as tiny spheres) | | HierarchyAngle | 0 (off) | degrees;
+ * with a proxy hierarchy (Level/Parent arrays), receivers are clustered and each cluster uses the
+ * hierarchy cut whose nodes subtend less than this, with ratio vectors (SHEXP 6.3); 20-30 is the
+ * paper's range | | ReceiversPerCluster | 256 | cluster size for hierarchy cuts |
  *
  * Simulate only what the scene needs: shadows run only when there are
  * blockers; per receiver, the exp runs only when a blocker subtends more than
  * MinBlockerAngle after the self-shadow rules (receivers with none get g = 1
  * at no cost). The Plan array says what ran, what was skipped, and why.
- * Indirect light and local lights are not in this filter yet: when the
- * lighting asks for local lights, the plan says they were not simulated.
+ * Indirect light runs only when some proxy or plane has a nonzero albedo and
+ * the environment is not black; local lights only when the lighting has some.
  *
  * Errors: no receivers, NaN/Inf in receivers or proxies, proxies without a
  * Radius array, a bad environment.
@@ -98,6 +103,20 @@ public:
   vtkGetMacro(HierarchyAngle, double);
   vtkSetClampMacro(ReceiversPerCluster, int, 1, 1 << 20);
   vtkGetMacro(ReceiversPerCluster, int);
+  vtkSetMacro(Indirect, bool);
+  vtkGetMacro(Indirect, bool);
+  vtkBooleanMacro(Indirect, bool);
+  enum
+  {
+    INDIRECT_POINT_SAMPLED = 0,
+    INDIRECT_AVERAGED = 1,
+    INDIRECT_EXACT = 2
+  };
+  vtkSetClampMacro(IndirectOperator, int, INDIRECT_POINT_SAMPLED, INDIRECT_EXACT);
+  vtkGetMacro(IndirectOperator, int);
+  vtkSetMacro(LocalLights, bool);
+  vtkGetMacro(LocalLights, bool);
+  vtkBooleanMacro(LocalLights, bool);
   vtkSetMacro(Shadows, bool);
   vtkGetMacro(Shadows, bool);
   vtkBooleanMacro(Shadows, bool);
@@ -106,8 +125,10 @@ public:
   vtkSetStringMacro(AlbedoArrayName);
   vtkGetStringMacro(AlbedoArrayName);
 
-  /// Infinite planes that block the half-space beneath them (a ground).
+  /// Infinite planes that block the half-space beneath them (a ground); with
+  /// an albedo they also reflect light (indirect).
   void AddBlockerPlane(const double origin[3], const double normal[3]);
+  void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
   void RemoveAllBlockerPlanes();
 
   /// The plan of the last execution, one line per decision.
@@ -132,11 +153,14 @@ protected:
   double MinBlockerAngle = 0.002;
   int ShadingPath = SHADING_TABLE;
   bool Shadows = true;
+  bool Indirect = true;
+  int IndirectOperator = INDIRECT_AVERAGED;
+  bool LocalLights = true;
   double HierarchyAngle = 0.0;
   int ReceiversPerCluster = 256;
   double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
   char* AlbedoArrayName = nullptr;
-  std::vector<double> BlockerPlanes; // origin, normal
+  std::vector<double> BlockerPlanes; // origin, normal, albedo
   std::vector<std::string> Plan;
 
 private:

@@ -2,6 +2,7 @@
 
 #include "pgiSHBasis.h"
 
+#include <array>
 #include <vector>
 
 namespace proxygi
@@ -87,15 +88,34 @@ void ClampedCosineZonal(int order, double* zh)
   }
 }
 
+namespace
+{
+// Scaled clamped-cosine ZH over pi, per band: the same for every order, so
+// computed once (DiffuseTransfer runs per receiver).
+const std::array<double, MaxBasisOrder>& DiffuseTransferZonal()
+{
+  static const std::array<double, MaxBasisOrder> table = []()
+  {
+    std::array<double, MaxBasisOrder> zh{};
+    ClampedCosineZonal(MaxBasisOrder, zh.data());
+    for (int l = 0; l < MaxBasisOrder; ++l)
+    {
+      zh[l] *= ZonalScale(l) / Pi;
+    }
+    return zh;
+  }();
+  return table;
+}
+} // namespace
+
 template <typename T>
 void DiffuseTransfer(int order, T nx, T ny, T nz, T* out)
 {
-  double zh[MaxBasisOrder];
-  ClampedCosineZonal(order, zh);
+  const auto& zh = DiffuseTransferZonal();
   T scaled[MaxBasisOrder];
   for (int l = 0; l < order; ++l)
   {
-    scaled[l] = static_cast<T>(zh[l] * ZonalScale(l) / Pi);
+    scaled[l] = static_cast<T>(zh[l]);
   }
   RotateScaledZonal(order, scaled, nx, ny, nz, out);
 }

@@ -1,0 +1,154 @@
+#include "pgiIndirectLight.h"
+
+#include "pgiSHBasis.h"
+#include "pgiSHLightTables.h"
+#include "pgiSHTables.h"
+#include "pgiSHTripleProduct.h"
+#include "pgiSHZonal.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace proxygi
+{
+
+const char* IndirectOperatorName(IndirectOperator op)
+{
+  switch (op)
+  {
+    case IndirectOperator::PointSampled:
+      return "point-sampled";
+    case IndirectOperator::Averaged:
+      return "averaged D(theta)";
+    case IndirectOperator::Exact:
+      return "exact M(theta)";
+  }
+  return "?";
+}
+
+SecondaryLights::SecondaryLights(
+  int order, const double* red, const double* green, const double* blue, const Blockers* planes)
+  : Order(order)
+{
+  const int n2 = sh::NumCoefficients(order);
+  const double* light[3] = { red, green, blue };
+  std::vector<double> shadowed;
+  if (planes && planes->Planes() > 0)
+  {
+    // V = exp(sum of the planes' 90-degree cap logs); L' = L * V.
+    const sh::CapTables& caps = sh::CapTables::Get(order);
+    double zh[sh::MaxOrder], f[sh::MaxCoefficients] = {}, v[sh::MaxCoefficients],
+                             rotated[sh::MaxCoefficients];
+    caps.CapLog(sh::CapTables::MaxAngle, zh);
+    for (std::size_t k = 0; k < planes->Planes(); ++k)
+    {
+      const float* pn = &planes->PlaneNormal[3 * k];
+      sh::RotateScaledZonal(order, zh, -double(pn[0]), -double(pn[1]), -double(pn[2]), rotated);
+      for (int i = 0; i < n2; ++i)
+      {
+        f[i] += rotated[i];
+      }
+    }
+    if (sh::Exp(order, f, v) == sh::Status::Ok)
+    {
+      shadowed.resize(3 * n2);
+      for (int c = 0; c < 3; ++c)
+      {
+        sh::TripleProduct::Get(order).Product(light[c], v, &shadowed[c * n2]);
+        light[c] = &shadowed[c * n2];
+      }
+    }
+  }
+  this->Response.resize(3 * n2);
+  double kernel[sh::MaxBasisOrder];
+  sh::ClampedCosineZonal(order, kernel);
+  for (int c = 0; c < 3; ++c)
+  {
+    for (int l = 0; l < order; ++l)
+    {
+      const double s = sh::ZonalScale(l) * kernel[l] / sh::Pi;
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+      {
+        this->Response[c * n2 + i] = static_cast<float>(s * light[c][i]);
+      }
+    }
+  }
+}
+
+void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
+  const Blockers& blockers, const std::vector<SeenBlocker>& seen, float visibilityDC,
+  const float n[3], float rgb[3])
+{
+  rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  if (seen.empty())
+  {
+    return;
+  }
+  const int order = lights.Order, n2 = sh::NumCoefficients(order);
+  const sh::CapTables& caps = sh::CapTables::Get(order);
+  const sh::IndirectTables& indirect = sh::IndirectTables::Get(order);
+  float h[sh::MaxCoefficients], zh[sh::MaxOrder], cap[sh::MaxCoefficients];
+  sh::DiffuseTransfer(order, n[0], n[1], n[2], h);
+  float sum[3] = { 0, 0, 0 };
+  float solidAngles = 0.0f;
+  for (const SeenBlocker& b : seen)
+  {
+    // H(N) . (cap about b.Dir): the cap's irradiance weight, shared by the
+    // cap-times-scalar operators.
+    caps.CapVisibility(b.Theta, zh);
+    zh[0] = static_cast<float>(4.0 * sh::Pi) - zh[0]; // visibility -> cap (scaled ZH)
+    for (int l = 1; l < order; ++l)
+    {
+      zh[l] = -zh[l];
+    }
+    sh::RotateScaledZonal(order, zh, b.Dir[0], b.Dir[1], b.Dir[2], cap);
+    const float capWeight = sh::Dot(n2, h, cap);
+    solidAngles += static_cast<float>(sh::CapSolidAngle(b.Theta));
+    if (b.Index < 0)
+    {
+      // A plane: uniform radiance, its albedo times the response at its normal.
+      const int k = -1 - b.Index;
+      const float* pn = &blockers.PlaneNormal[3 * k];
+      for (int c = 0; c < 3; ++c)
+      {
+        const float r = blockers.PlaneAlbedo[3 * k + c] *
+          sh::Reconstruct(order, &lights.Response[c * n2], pn[0], pn[1], pn[2]);
+        sum[c] += r * capWeight;
+      }
+      continue;
+    }
+    const float* albedo = &blockers.Albedo[3 * static_cast<std::size_t>(b.Index)];
+    if (albedo[0] <= 0.0f && albedo[1] <= 0.0f && albedo[2] <= 0.0f)
+    {
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      float rc[sh::MaxCoefficients];
+      for (int i = 0; i < n2; ++i)
+      {
+        rc[i] = albedo[c] * lights.Response[c * n2 + i];
+      }
+      if (op == IndirectOperator::PointSampled)
+      {
+        // The surface point facing the receiver has outward normal -Dir.
+        sum[c] += capWeight * sh::Reconstruct(order, rc, -b.Dir[0], -b.Dir[1], -b.Dir[2]);
+      }
+      else if (op == IndirectOperator::Averaged)
+      {
+        sum[c] += capWeight * indirect.AveragedRadiance(b.Theta, b.Dir, rc);
+      }
+      else
+      {
+        sum[c] += indirect.ExactIndirectExitRadiance(b.Theta, b.Dir, n, rc);
+      }
+    }
+  }
+  const float xi = sh::OverlapNormalization(visibilityDC, solidAngles);
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] = std::max(0.0f, xi * sum[c]);
+  }
+}
+
+} // namespace proxygi
