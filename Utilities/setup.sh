@@ -18,6 +18,7 @@ packages=(
   paraview-dev python3-paraview
   qtbase5-dev qttools5-dev libqt5x11extras5-dev libqt5svg5-dev
   qtxmlpatterns5-dev-tools libqt5opengl5-dev
+  libopenmpi-dev libutfcpp-dev
   libembree-dev libopenexr-dev libglm-dev libeigen3-dev
   libegl-dev libosmesa6-dev libgl1-mesa-dri xvfb xauth
   libgtest-dev libbenchmark-dev
