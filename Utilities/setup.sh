@@ -20,7 +20,7 @@ packages=(
   qtxmlpatterns5-dev-tools libqt5opengl5-dev
   libopenmpi-dev libutfcpp-dev
   libembree-dev libopenexr-dev libglm-dev libeigen3-dev
-  libegl-dev libosmesa6-dev libgl1-mesa-dri xvfb xauth
+  libegl-dev libglew-dev libosmesa6-dev libgl1-mesa-dri xvfb xauth
   libgtest-dev libbenchmark-dev
 )
 

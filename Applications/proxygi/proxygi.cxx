@@ -77,7 +77,9 @@ Commands:
              Run 'proxygi sh --help'.
   bench      Run the Google Benchmark programs (accuracy counters included);
              arguments go to the benchmark program.
-  proxies    Sphere proxies of a mesh            (not built yet: issue #3)
+  proxies    Bounding sphere proxies of a mesh (variational, octree or
+             k-means): write them (.vtp), print E and the build time.
+             Run 'proxygi proxies --help'.
   reference  Embree path-traced ground truth of a scene (or the default
              scene), per pixel (EXR/PNG) or per vertex (.vtp), with its noise.
              Run 'proxygi reference --help'.
@@ -152,8 +154,7 @@ int main(int argc, char* argv[])
   }
   if (command == "proxies")
   {
-    std::fprintf(stderr, "proxygi %s: not built yet (see 'proxygi --help')\n", command.c_str());
-    return 2;
+    return proxygi::cli::RunProxies(args);
   }
   std::fprintf(stderr, "proxygi: unknown command '%s'\n\n%s", command.c_str(), Usage);
   return 2;

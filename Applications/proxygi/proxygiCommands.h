@@ -14,6 +14,7 @@ using Args = std::vector<std::string>;
 int RunSH(const Args& args);
 int RunRender(const Args& args);
 int RunReference(const Args& args);
+int RunProxies(const Args& args);
 
 /// Value of "--name value" (or default); sets `ok` false on a bad number.
 std::string Option(const Args& args, const std::string& name, const std::string& fallback);

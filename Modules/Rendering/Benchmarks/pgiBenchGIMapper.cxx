@@ -1,0 +1,200 @@
+// Frame times of the GI mapper against VTK's own mapper, offscreen: a plane
+// of R x R quads plus a sphere, N sphere proxies, SH order n, the camera
+// orbiting. Three ways to draw: VTK's vtkOpenGLPolyDataMapper (its lighting),
+// the GI mapper with cached GI (only the camera moves), and the GI mapper
+// recomputing GI every frame (moving proxies). Also the CPU filter's time
+// for the same per-vertex GI. Prints a Markdown table.
+//
+//   ProxyGIBenchGIMapper [--size 512] [--budget 2] [--quick]
+#include "pgiOffscreenWindow.h"
+#include "vtkPGIGIPolyDataMapper.h"
+#include "vtkPGIGlobalIllumination.h"
+#include "vtkPGILighting.h"
+
+#include "vtkActor.h"
+#include "vtkAppendPolyData.h"
+#include "vtkCamera.h"
+#include "vtkDoubleArray.h"
+#include "vtkNew.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSphereSource.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+vtkSmartPointer<vtkPolyData> Scene(int resolution)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-4, -4, 0);
+  plane->SetPoint1(4, -4, 0);
+  plane->SetPoint2(-4, 4, 0);
+  plane->SetResolution(resolution, resolution);
+  vtkNew<vtkSphereSource> ball;
+  ball->SetCenter(0, 0, 1.5);
+  ball->SetThetaResolution(64);
+  ball->SetPhiResolution(32);
+  vtkNew<vtkAppendPolyData> all;
+  all->AddInputConnection(plane->GetOutputPort());
+  all->AddInputConnection(ball->GetOutputPort());
+  all->Update();
+  return all->GetOutput();
+}
+
+// The ball plus count - 1 random spheres above the plane.
+vtkSmartPointer<vtkPolyData> Proxies(int count)
+{
+  auto proxies = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkDoubleArray> radius;
+  radius->SetName("Radius");
+  points->InsertNextPoint(0, 0, 1.5);
+  radius->InsertNextValue(1.0);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 1; i < count; ++i)
+  {
+    points->InsertNextPoint(3.5 * u(rng), 3.5 * u(rng), 1.0 + 0.6 * u(rng));
+    radius->InsertNextValue(0.35 + 0.15 * u(rng));
+  }
+  proxies->SetPoints(points);
+  proxies->GetPointData()->AddArray(radius);
+  return proxies;
+}
+
+// Milliseconds per frame: renders (orbiting) until `budget` seconds or 30 frames.
+double FrameTime(vtkRenderWindow* window, vtkRenderer* renderer, double budget)
+{
+  for (int i = 0; i < 2; ++i) // warm-up: shaders, buffers, first GI pass
+  {
+    window->Render();
+  }
+  window->WaitForCompletion();
+  int frames = 0;
+  const auto start = Clock::now();
+  double elapsed = 0.0;
+  while (frames < 30 && (frames < 3 || elapsed < budget))
+  {
+    renderer->GetActiveCamera()->Azimuth(3.0);
+    window->Render();
+    window->WaitForCompletion();
+    ++frames;
+    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  return 1000.0 * elapsed / frames;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  int size = 512;
+  double budget = 2.0;
+  bool quick = false;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--size") && i + 1 < argc)
+    {
+      size = std::atoi(argv[++i]);
+    }
+    else if (!std::strcmp(argv[i], "--budget") && i + 1 < argc)
+    {
+      budget = std::atof(argv[++i]);
+    }
+    else if (!std::strcmp(argv[i], "--quick"))
+    {
+      quick = true;
+    }
+    else
+    {
+      std::fprintf(stderr, "usage: %s [--size 512] [--budget seconds] [--quick]\n", argv[0]);
+      return 2;
+    }
+  }
+  std::string description;
+  vtkSmartPointer<vtkRenderWindow> window = proxygi::NewOffscreenRenderWindow(&description);
+  if (!window)
+  {
+    std::fprintf(stderr, "no offscreen window: %s\n", description.c_str());
+    return 1;
+  }
+  window->SetSize(size, size);
+  std::printf("window: %s, %dx%d\n\n", description.c_str(), size, size);
+  std::printf("| vertices | proxies | order | VTK mapper ms | GI cached ms (x) | GI every frame ms "
+              "(x) | GI pass ms | CPU filter ms |\n|---|---|---|---|---|---|---|---|\n");
+
+  vtkNew<vtkPGILighting> lighting;
+  struct Config
+  {
+    int Resolution, Proxies, Order;
+  };
+  std::vector<Config> configs = { { 64, 1, 4 }, { 64, 8, 4 }, { 64, 32, 4 }, { 128, 1, 4 },
+    { 128, 8, 4 }, { 128, 32, 3 }, { 128, 32, 4 }, { 128, 128, 4 }, { 256, 8, 4 }, { 256, 32, 4 } };
+  if (quick)
+  {
+    configs = { { 64, 8, 4 } };
+  }
+  for (const Config& c : configs)
+  {
+    vtkSmartPointer<vtkPolyData> mesh = Scene(c.Resolution);
+    vtkSmartPointer<vtkPolyData> proxies = Proxies(c.Proxies);
+    double ms[3];
+    for (int mode = 0; mode < 3; ++mode)
+    {
+      vtkNew<vtkRenderer> renderer;
+      vtkNew<vtkActor> actor;
+      vtkSmartPointer<vtkPolyDataMapper> mapper;
+      if (mode == 0)
+      {
+        mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+      }
+      else
+      {
+        auto gi = vtkSmartPointer<vtkPGIGIPolyDataMapper>::New();
+        gi->SetProxies(proxies);
+        gi->SetLighting(lighting);
+        gi->SetOrder(c.Order);
+        gi->SetAlwaysRecompute(mode == 2);
+        mapper = gi;
+      }
+      mapper->SetInputData(mesh);
+      actor->SetMapper(mapper);
+      renderer->AddActor(actor);
+      window->AddRenderer(renderer);
+      renderer->GetActiveCamera()->SetPosition(0, -9, 6);
+      renderer->GetActiveCamera()->SetFocalPoint(0, 0, 0.5);
+      renderer->GetActiveCamera()->SetViewUp(0, 0, 1);
+      renderer->ResetCameraClippingRange();
+      ms[mode] = FrameTime(window, renderer, budget);
+      window->RemoveRenderer(renderer);
+    }
+    const auto start = Clock::now();
+    vtkNew<vtkPGIGlobalIllumination> cpu;
+    cpu->SetInputData(mesh);
+    cpu->SetProxiesData(proxies);
+    cpu->SetLighting(lighting);
+    cpu->SetOrder(c.Order);
+    cpu->IndirectOff();
+    cpu->LocalLightsOff();
+    cpu->Update();
+    const double cpuMs = 1000.0 * std::chrono::duration<double>(Clock::now() - start).count();
+    std::printf("| %lld | %d | %d | %.1f | %.1f (%.2f) | %.1f (%.2f) | %.1f | %.0f |\n",
+      static_cast<long long>(mesh->GetNumberOfPoints()), c.Proxies, c.Order, ms[0], ms[1],
+      ms[1] / ms[0], ms[2], ms[2] / ms[0], ms[2] - ms[1], cpuMs);
+    std::fflush(stdout);
+  }
+  return 0;
+}

@@ -1,0 +1,158 @@
+// The default scene's bunny on a ground plane under the forest map, per-vertex
+// GI on the GPU: the bunny shadowed by its 32 sphere proxies (self-shadowing
+// through the replacement rules) and the ground, the ground by the proxies.
+// The proxies were built once by vtkPGISphereSetApproximation (variational,
+// 32 spheres, E = 0.36) on the bunny as placed here and are committed
+// (Testing/Data/bunny-proxies-32.vtp), so the image does not follow changes
+// of that algorithm. Checks GPU against CPU on the bunny, then the image.
+// Needs the data set-up fetches (skipped without it).
+#include "pgiOffscreenWindow.h"
+#include "pgiTesting.h"
+#include "vtkPGIEXRReader.h"
+#include "vtkPGIGIPolyDataMapper.h"
+#include "vtkPGIGlobalIllumination.h"
+#include "vtkPGILighting.h"
+#include "vtkPGIOFFReader.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkRegressionTestImage.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTesting.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+int TestRenderingBunny(int argc, char* argv[])
+{
+  const std::string bunnyPath = std::string(PROXYGI_DATA_DIR) + "/meshes/bunny00.off";
+  const std::string forestPath = std::string(PROXYGI_DATA_DIR) + "/environments/forest.exr";
+  if (!vtksys::SystemTools::FileExists(bunnyPath) || !vtksys::SystemTools::FileExists(forestPath))
+  {
+    std::printf("skipped: %s or %s missing (run Utilities/setup.sh --data)\n", bunnyPath.c_str(),
+      forestPath.c_str());
+    return VTK_SKIP_RETURN_CODE;
+  }
+  std::string description;
+  vtkSmartPointer<vtkRenderWindow> window = proxygi::NewOffscreenRenderWindow(&description);
+  std::printf("window: %s\n", description.c_str());
+  if (!PGI_CHECK(window != nullptr))
+  {
+    return EXIT_FAILURE;
+  }
+
+  // The bunny as the default scene places it: z up, feet on z = 0.
+  vtkNew<vtkPGIOFFReader> reader;
+  reader->SetFileName(bunnyPath.c_str());
+  vtkNew<vtkTransform> place;
+  place->PostMultiply();
+  place->RotateX(90);
+  place->Translate(0, 0, 0.494);
+  vtkNew<vtkTransformPolyDataFilter> moved;
+  moved->SetInputConnection(reader->GetOutputPort());
+  moved->SetTransform(place);
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputConnection(moved->GetOutputPort());
+  normals->SplittingOff();
+  normals->Update();
+  vtkPolyData* bunny = normals->GetOutput();
+
+  vtkNew<vtkPlaneSource> ground;
+  ground->SetOrigin(-3, -3, 0);
+  ground->SetPoint1(3, -3, 0);
+  ground->SetPoint2(-3, 3, 0);
+  ground->SetResolution(96, 96);
+
+  vtkNew<vtkXMLPolyDataReader> proxiesReader;
+  const std::string proxiesPath = std::string(PGI_RENDERING_TEST_DATA) + "/bunny-proxies-32.vtp";
+  proxiesReader->SetFileName(proxiesPath.c_str());
+  proxiesReader->Update();
+  vtkPolyData* proxies = proxiesReader->GetOutput();
+  PGI_CHECK(proxies->GetNumberOfPoints() == 32);
+
+  vtkNew<vtkPGIEXRReader> forest;
+  forest->SetFileName(forestPath.c_str());
+  forest->Update();
+  vtkNew<vtkPGILighting> lighting;
+  lighting->SetEnvironmentImage(forest->GetOutput());
+
+  const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
+  vtkNew<vtkPGIGIPolyDataMapper> bunnyMapper, groundMapper;
+  bunnyMapper->SetInputData(bunny);
+  bunnyMapper->AddBlockerPlane(origin, up);
+  groundMapper->SetInputConnection(ground->GetOutputPort());
+  groundMapper->SetAlbedo(0.5, 0.5, 0.5);
+  for (vtkPGIGIPolyDataMapper* m : { bunnyMapper.Get(), groundMapper.Get() })
+  {
+    m->SetProxies(proxies);
+    m->SetLighting(lighting);
+    m->SetOrder(4);
+    m->SetExposure(0.6);
+  }
+  vtkNew<vtkActor> bunnyActor, groundActor;
+  bunnyActor->SetMapper(bunnyMapper);
+  groundActor->SetMapper(groundMapper);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(bunnyActor);
+  renderer->AddActor(groundActor);
+  renderer->SetBackground(0.1, 0.1, 0.12);
+  window->AddRenderer(renderer);
+  window->SetSize(300, 300);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(1.6, -2.6, 1.5);
+  camera->SetFocalPoint(0, 0, 0.35);
+  camera->SetViewUp(0, 0, 1);
+  camera->SetViewAngle(30);
+  renderer->ResetCameraClippingRange();
+  window->Render();
+  std::printf("bunny: %s\nground: %s\n", bunnyMapper->GetGIStatus().c_str(),
+    groundMapper->GetGIStatus().c_str());
+
+  // GPU against the CPU filter on the bunny (product-matrix path).
+  vtkNew<vtkFloatArray> radiance;
+  PGI_CHECK(bunnyMapper->GetPerVertexResults(radiance));
+  vtkNew<vtkPGIGlobalIllumination> cpu;
+  cpu->SetInputData(bunny);
+  cpu->SetProxiesData(proxies);
+  cpu->SetLighting(lighting);
+  cpu->SetOrder(4);
+  cpu->IndirectOff();
+  cpu->LocalLightsOff();
+  cpu->SetShadingPath(vtkPGIGlobalIllumination::SHADING_PRODUCT_MATRIX);
+  cpu->AddBlockerPlane(origin, up);
+  cpu->Update();
+  vtkDataArray* reference = cpu->GetOutput()->GetPointData()->GetArray("DirectShadowed");
+  double worst = 0.0, peak = 0.0, sq = 0.0, ref = 0.0;
+  for (vtkIdType i = 0; i < bunny->GetNumberOfPoints(); ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double a = radiance->GetComponent(i, k), b = reference->GetComponent(i, k);
+      worst = std::max(worst, std::fabs(a - b));
+      peak = std::max(peak, std::fabs(b));
+      sq += (a - b) * (a - b);
+      ref += b * b;
+    }
+  }
+  std::printf("bunny, %lld vertices, 32 proxies: GPU vs CPU max %.2e (relative %.2e), relative "
+              "RMS %.2e\n",
+    static_cast<long long>(bunny->GetNumberOfPoints()), worst, worst / peak, std::sqrt(sq / ref));
+  PGI_BELOW(worst / peak, 1e-4);
+
+  const int image = vtkRegressionTestImage(window);
+  return (image == vtkTesting::FAILED || pgitest::Result() != EXIT_SUCCESS) ? EXIT_FAILURE
+                                                                            : EXIT_SUCCESS;
+}

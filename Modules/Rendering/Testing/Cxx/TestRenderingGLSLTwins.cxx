@@ -1,0 +1,517 @@
+// Each GLSL helper of the GI mapper against its C++ twin, run per vertex on
+// the GPU (transform feedback) over random and edge-case inputs, at SH
+// orders 3, 4 and 6: basis, cap-log table lookup, ZH rotation, optimal-linear
+// lookup, SH square, HYB exp (with and without the range guard acting), the
+// self-shadow rules, the whole per-receiver visibility, diffuse transfer and
+// both shading paths. Prints the measured errors; fails above the bounds.
+#include "pgiGIShaders.h"
+#include "pgiOffscreenWindow.h"
+#include "pgiTesting.h"
+
+#include "pgiEnvironmentShading.h"
+#include "pgiSHBasis.h"
+#include "pgiSHExp.h"
+#include "pgiSHTables.h"
+#include "pgiSHTripleProduct.h"
+#include "pgiSHZonal.h"
+#include "pgiSoftShadows.h"
+
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkRenderWindow.h"
+#include "vtkSmartPointer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+namespace sh = proxygi::sh;
+
+int Vec4s(int floats)
+{
+  return (floats + 3) / 4;
+}
+
+// GLSL: float name[size] filled from pgiIn<first>.. (4 per vec4).
+std::string Unpack(const std::string& name, const std::string& size, int count, int first)
+{
+  std::ostringstream s;
+  s << "  float " << name << "[" << size << "];\n";
+  for (int i = 0; i < count; ++i)
+  {
+    s << "  " << name << "[" << i << "] = pgiIn" << first + i / 4 << "[" << i % 4 << "];\n";
+  }
+  return s.str();
+}
+
+// GLSL: pgiOut<first>.. = name[0..count-1], zero padded.
+std::string Pack(const std::string& name, int count, int first)
+{
+  std::ostringstream s;
+  for (int k = 0; k < Vec4s(count); ++k)
+  {
+    s << "  pgiOut" << first + k << " = vec4(";
+    for (int c = 0; c < 4; ++c)
+    {
+      const int i = 4 * k + c;
+      s << (c ? ", " : "") << (i < count ? name + "[" + std::to_string(i) + "]" : "0.0");
+    }
+    s << ");\n";
+  }
+  return s.str();
+}
+
+// Error of a GPU result against a reference, in units of the reference's scale.
+struct Stats
+{
+  double MaxAbs = 0.0;
+  double MaxRef = 0.0;
+  void Add(double gpu, double ref)
+  {
+    const double e = std::fabs(gpu - ref);
+    MaxAbs = std::isnan(e) ? 1e30 : std::max(MaxAbs, e);
+    MaxRef = std::max(MaxRef, std::fabs(ref));
+  }
+  double Relative() const { return MaxAbs / std::max(MaxRef, 1e-30); }
+};
+
+void Report(const char* what, int order, const Stats& s, double bound)
+{
+  std::printf("  %-34s order %d: max |GPU - C++| %.3g (max |C++| %.3g, relative %.3g)\n", what,
+    order, s.MaxAbs, s.MaxRef, s.Relative());
+  std::string name = std::string(what) + " order " + std::to_string(order);
+  pgitest::Below(s.Relative(), bound, name.c_str(), __FILE__, __LINE__);
+}
+
+struct Random
+{
+  std::mt19937 Engine{ 7 };
+  double Uniform(double a, double b)
+  {
+    return std::uniform_real_distribution<double>(a, b)(Engine);
+  }
+  void Direction(float d[3])
+  {
+    std::normal_distribution<double> n;
+    double v[3] = { n(Engine), n(Engine), n(Engine) };
+    const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int k = 0; k < 3; ++k)
+    {
+      d[k] = static_cast<float>(v[k] / len);
+    }
+  }
+};
+
+// A log-visibility vector as the kernel sums it: `blockers` random caps,
+// spread over the sphere (spread 0) or clustered about one direction.
+void RandomLog(Random& random, int order, int blockers, float maxTheta, float spread, float* f)
+{
+  const sh::CapTables& tables = sh::CapTables::Get(order);
+  const int n2 = order * order;
+  std::fill(f, f + n2, 0.0f);
+  float zh[sh::MaxOrder], v[sh::MaxCoefficients], d[3], centre[3];
+  random.Direction(centre);
+  std::normal_distribution<double> normal;
+  for (int b = 0; b < blockers; ++b)
+  {
+    random.Direction(d);
+    if (spread > 0.0f)
+    {
+      double len = 0.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        d[k] = centre[k] + spread * static_cast<float>(normal(random.Engine));
+        len += d[k] * d[k];
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        d[k] = static_cast<float>(d[k] / std::sqrt(len));
+      }
+    }
+    tables.CapLog(static_cast<float>(random.Uniform(0.01, maxTheta)), zh);
+    sh::RotateScaledZonal(order, zh, d[0], d[1], d[2], v);
+    for (int i = 0; i < n2; ++i)
+    {
+      f[i] += v[i];
+    }
+  }
+}
+} // namespace
+
+int TestRenderingGLSLTwins(int, char*[])
+{
+  std::string description;
+  vtkSmartPointer<vtkRenderWindow> window = proxygi::NewOffscreenRenderWindow(&description);
+  std::printf("window: %s\n", description.c_str());
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!PGI_CHECK(gl != nullptr))
+  {
+    return pgitest::Result();
+  }
+  window->Render(); // the context and VTK's GL state
+  proxygi::gpu::GLSLHarness harness(gl);
+  Random random;
+  const int samples = 600;
+
+  for (int order : { 3, 4, 6 })
+  {
+    const int n2 = order * order;
+    const std::string N2 = "PGI_SH_N2", NO = "PGI_SH_ORDER";
+    const sh::CapTables& tables = sh::CapTables::Get(order);
+    std::vector<float> in, out;
+    auto run = [&](const std::string& body, int inputs, int outputs) -> bool
+    {
+      const bool ok = harness.Run(order, "", body, inputs, outputs, in, out);
+      if (!ok)
+      {
+        std::printf("FAILED harness: %s\n", harness.GetError().c_str());
+        ++pgitest::Failures();
+      }
+      return ok;
+    };
+
+    // The driver's built-ins the kernel uses, against double precision: the
+    // floor under every other comparison.
+    if (order == 4)
+    {
+      in.assign(4 * samples, 0.0f);
+      for (int s = 0; s < samples; ++s)
+      {
+        in[4 * s] = static_cast<float>(random.Uniform(0.0, 1.0));       // asin
+        in[4 * s + 1] = static_cast<float>(random.Uniform(-20.0, 1.0)); // exp
+        in[4 * s + 2] = static_cast<float>(random.Uniform(1e-3, 40.0)); // log2
+      }
+      in[0] = 1.0f;
+      in[4] = 0.5f;
+      in[8] = 0.0f;
+      if (run("  pgiOut0 = vec4(asin(pgiIn0.x), exp(pgiIn0.y), log2(pgiIn0.z), "
+              "sqrt(pgiIn0.z));\n  pgiOut1 = vec4(pgiAsin(pgiIn0.x), 0.0, 0.0, 0.0);\n",
+            1, 2))
+      {
+        double worst[5] = { 0, 0, 0, 0, 0 };
+        for (int s = 0; s < samples; ++s)
+        {
+          const double ref[5] = { std::asin(double(in[4 * s])), std::exp(double(in[4 * s + 1])),
+            std::log2(double(in[4 * s + 2])), std::sqrt(double(in[4 * s + 2])),
+            std::asin(double(in[4 * s])) };
+          for (int k = 0; k < 5; ++k)
+          {
+            const double scale =
+              k == 1 ? std::max(ref[k], 1e-30) : std::max(std::fabs(ref[k]), 1.0);
+            worst[k] = std::max(worst[k], std::fabs(out[8 * s + k] - ref[k]) / scale);
+          }
+        }
+        std::printf("  built-ins vs double: asin %.3g abs, exp %.3g rel, log2 %.3g abs, sqrt %.3g; "
+                    "pgiAsin %.3g abs\n",
+          worst[0], worst[1], worst[2], worst[3], worst[4]);
+        PGI_BELOW(worst[4], 1e-6); // ours, whatever the driver's asin does
+        PGI_BELOW(worst[1], 1e-4);
+      }
+    }
+
+    // Basis, against the double-precision basis (the float one is within it).
+    {
+      in.assign(4 * samples, 0.0f);
+      const float poles[][3] = { { 0, 0, 1 }, { 0, 0, -1 }, { 1, 0, 0 }, { 0, 1, 0 } };
+      for (int s = 0; s < samples; ++s)
+      {
+        if (s < 4)
+        {
+          std::copy(poles[s], poles[s] + 3, &in[4 * s]);
+        }
+        else
+        {
+          random.Direction(&in[4 * s]);
+        }
+      }
+      const int outs = Vec4s(n2);
+      if (run("  float y[PGI_SH_N2];\n  pgiSHBasis(pgiIn0.xyz, y);\n" + Pack("y", n2, 0), 1, outs))
+      {
+        Stats stats;
+        for (int s = 0; s < samples; ++s)
+        {
+          double y[sh::MaxCoefficients];
+          sh::EvaluateBasis<double>(order, in[4 * s], in[4 * s + 1], in[4 * s + 2], y);
+          for (int i = 0; i < n2; ++i)
+          {
+            stats.Add(out[4 * outs * s + i], y[i]);
+          }
+        }
+        Report("pgiSHBasis vs EvaluateBasis", order, stats, 2e-6);
+      }
+    }
+
+    // Cap-log table lookup and the ZH rotation, over the whole range and past it.
+    {
+      in.assign(4 * samples, 0.0f);
+      for (int s = 0; s < samples; ++s)
+      {
+        const float theta = s == 0 ? 0.0f
+          : s == 1                 ? static_cast<float>(sh::CapTables::MaxAngle)
+          : s == 2                 ? 2.0f
+                   : static_cast<float>(random.Uniform(0.0, sh::CapTables::MaxAngle));
+        in[4 * s] = theta;
+        random.Direction(&in[4 * s + 1]);
+      }
+      const int zhOuts = Vec4s(order), vOuts = Vec4s(n2);
+      const std::string body =
+        "  float zh[PGI_SH_ORDER];\n  pgiCapLog(pgiIn0.x, zh);\n"
+        "  float v[PGI_SH_N2];\n  pgiRotateScaledZonal(zh, pgiIn0.yzw, v);\n" +
+        Pack("zh", order, 0) + Pack("v", n2, zhOuts);
+      if (run(body, 1, zhOuts + vOuts))
+      {
+        Stats lookup, rotation;
+        const int stride = 4 * (zhOuts + vOuts);
+        for (int s = 0; s < samples; ++s)
+        {
+          float zh[sh::MaxOrder], v[sh::MaxCoefficients];
+          tables.CapLog(in[4 * s], zh);
+          sh::RotateScaledZonal(order, zh, in[4 * s + 1], in[4 * s + 2], in[4 * s + 3], v);
+          for (int l = 0; l < order; ++l)
+          {
+            lookup.Add(out[stride * s + l], zh[l]);
+          }
+          for (int i = 0; i < n2; ++i)
+          {
+            rotation.Add(out[stride * s + 4 * zhOuts + i], v[i]);
+          }
+        }
+        Report("pgiCapLog vs CapTables::CapLog", order, lookup, 2e-6);
+        Report("pgiRotateScaledZonal vs C++", order, rotation, 4e-6);
+      }
+    }
+
+    // Optimal-linear lookup, including past the fitted range.
+    {
+      in.assign(4 * samples, 0.0f);
+      const double maxNorm = tables.GetOptimalLinearMaxNorm();
+      for (int s = 0; s < samples; ++s)
+      {
+        in[4 * s] = s == 0 ? 0.0f : static_cast<float>(random.Uniform(0.0, 1.2 * maxNorm));
+      }
+      if (run("  float a, b;\n  pgiOptimalLinear(pgiIn0.x, a, b);\n  pgiOut0 = vec4(a, b, 0.0, "
+              "0.0);\n",
+            1, 1))
+      {
+        Stats stats;
+        for (int s = 0; s < samples; ++s)
+        {
+          float a, b;
+          tables.OptimalLinear(in[4 * s], a, b);
+          stats.Add(out[4 * s], a);
+          stats.Add(out[4 * s + 1], b);
+        }
+        Report("pgiOptimalLinear vs C++", order, stats, 2e-6);
+      }
+    }
+
+    // SH square (generated from the tensor) and HYB exp, on log-visibility
+    // vectors of 1 to 12 caps spread out (what the kernel meets), then of 20
+    // to 100 caps clustered about one direction, where the range guard acts.
+    for (int crowd = 0; crowd < 2; ++crowd)
+    {
+      const int ins = Vec4s(n2);
+      in.assign(4 * ins * samples, 0.0f);
+      int guarded = 0;
+      std::vector<std::vector<float>> fs(samples, std::vector<float>(n2));
+      for (int s = 0; s < samples; ++s)
+      {
+        const int blockers = crowd ? 20 + s % 81 : 1 + s % 12;
+        RandomLog(random, order, blockers, crowd ? 0.5f : 1.0f, crowd ? 0.1f : 0.0f, fs[s].data());
+        std::copy(fs[s].begin(), fs[s].end(), &in[4 * ins * s]);
+      }
+      // Two runs: both at once pass the transform-feedback limit at order 6.
+      std::vector<float> squares;
+      const bool ran = run(Unpack("f", N2, n2, 0) +
+          "  float sq[PGI_SH_N2];\n  pgiSHSquare(f, sq);\n" + Pack("sq", n2, 0),
+        ins, ins);
+      squares.swap(out);
+      if (ran &&
+        run(Unpack("f", N2, n2, 0) + "  float g[PGI_SH_N2];\n  pgiExpHybrid(f, g);\n" +
+            Pack("g", n2, 0),
+          ins, ins))
+      {
+        Stats square, exp;
+        const sh::TripleProduct& tp = sh::TripleProduct::Get(order);
+        const int stride = 4 * ins;
+        for (int s = 0; s < samples; ++s)
+        {
+          float sq[sh::MaxCoefficients], g[sh::MaxCoefficients], unguarded[sh::MaxCoefficients];
+          // The C++ square of the same float input, accumulated in double
+          // so the bound measures the GPU's rounding, not the CPU's.
+          std::vector<double> fd(fs[s].begin(), fs[s].end());
+          double sqd[sh::MaxCoefficients];
+          tp.Square(fd.data(), sqd);
+          tp.Square(fs[s].data(), sq);
+          for (int i = 0; i < n2; ++i)
+          {
+            square.Add(squares[stride * s + i], sqd[i]);
+          }
+          sh::Exp(order, fs[s].data(), g);
+          sh::ExpOptions noGuard;
+          noGuard.RangeGuard = false;
+          sh::Exp(order, fs[s].data(), unguarded, noGuard);
+          bool differs = false;
+          for (int i = 0; i < n2; ++i)
+          {
+            exp.Add(out[stride * s + i], g[i]);
+            differs = differs || std::fabs(g[i] - unguarded[i]) > 1e-4f * std::fabs(g[0]);
+          }
+          guarded += differs ? 1 : 0;
+        }
+        Report(crowd ? "pgiSHSquare (clustered caps)" : "pgiSHSquare vs TripleProduct", order,
+          square, 2e-6);
+        std::printf("    (range guard acted on %d of %d inputs)\n", guarded, samples);
+        Report(crowd ? "pgiExpHybrid (clustered, guard)" : "pgiExpHybrid vs sh::Exp (HYB)", order,
+          exp, crowd ? 2e-3 : 1e-4);
+        if (crowd)
+        {
+          PGI_CHECK(guarded > 0); // the guard path was exercised
+        }
+      }
+    }
+
+    // Self-shadow rules: spheres around the tangent plane, receivers inside.
+    if (order == 4)
+    {
+      in.assign(12 * samples, 0.0f);
+      for (int s = 0; s < samples; ++s)
+      {
+        float* row = &in[12 * s];
+        random.Direction(row + 4); // normal
+        for (int k = 0; k < 3; ++k)
+        {
+          row[k] = static_cast<float>(random.Uniform(-1, 1));     // receiver
+          row[8 + k] = static_cast<float>(random.Uniform(-1, 1)); // centre
+        }
+        row[11] = static_cast<float>(random.Uniform(0.05, 1.5)); // radius
+      }
+      const std::string body = "  vec3 c = pgiIn2.xyz;\n  float r = pgiIn2.w;\n"
+                               "  bool kept = pgiReplaceBlocker(pgiIn0.xyz, pgiIn1.xyz, c, r);\n"
+                               "  pgiOut0 = vec4(c, kept ? r : -1.0);\n";
+      if (run(body, 3, 1))
+      {
+        Stats stats;
+        int agree = 0, kept = 0;
+        for (int s = 0; s < samples; ++s)
+        {
+          const float* row = &in[12 * s];
+          float c[3] = { row[8], row[9], row[10] }, r = row[11];
+          const bool k = proxygi::ReplaceBlocker(row, row + 4, c, r);
+          const bool gpuKept = out[4 * s + 3] >= 0.0f;
+          agree += k == gpuKept ? 1 : 0;
+          if (k && gpuKept)
+          {
+            ++kept;
+            for (int q = 0; q < 3; ++q)
+            {
+              stats.Add(out[4 * s + q], c[q]);
+            }
+            stats.Add(out[4 * s + 3], r);
+          }
+        }
+        std::printf("  pgiReplaceBlocker: same keep/drop decision for %d of %d (%d kept)\n", agree,
+          samples, kept);
+        PGI_CHECK(agree >= samples - 2); // ties at h = +-r may round either way
+        Report("pgiReplaceBlocker vs ReplaceBlocker", order, stats, 1e-5);
+      }
+    }
+
+    // The whole per-receiver visibility against SoftShadows::Visibility, and
+    // the shading paths against EnvironmentShading (product matrix).
+    {
+      proxygi::Blockers blockers;
+      std::vector<float> spheres;
+      for (int b = 0; b < 7; ++b)
+      {
+        const float x = static_cast<float>(random.Uniform(-1, 1)),
+                    y = static_cast<float>(random.Uniform(-1, 1)),
+                    z = static_cast<float>(random.Uniform(0.2, 1.5)),
+                    r = static_cast<float>(random.Uniform(0.1, 0.6));
+        blockers.AddSphere(x, y, z, r);
+        spheres.insert(spheres.end(), { x, y, z, r });
+      }
+      const float planeO[3] = { 0, 0, -0.5f }, planeN[3] = { 0, 0, 1 };
+      blockers.AddPlane(planeO, planeN);
+      const std::vector<float> planes = { 0, 0, -0.5f, 0, 0, 1 };
+      std::vector<double> lr(n2), lg(n2), lb(n2);
+      for (int i = 0; i < n2; ++i)
+      {
+        lr[i] = i == 0 ? 3.0 : random.Uniform(-0.5, 0.5);
+        lg[i] = i == 0 ? 2.5 : random.Uniform(-0.5, 0.5);
+        lb[i] = i == 0 ? 2.0 : random.Uniform(-0.5, 0.5);
+      }
+      harness.Resources().SetOrder(gl, order);
+      harness.Resources().SetBlockers(spheres, planes);
+      harness.Resources().SetLight(lr.data(), lg.data(), lb.data());
+      harness.Resources().SetSettings(proxygi::gpu::KernelSettings());
+      in.assign(8 * samples, 0.0f);
+      for (int s = 0; s < samples; ++s)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          in[8 * s + k] = static_cast<float>(random.Uniform(-1.5, 1.5));
+        }
+        in[8 * s + 2] = static_cast<float>(random.Uniform(-0.5, 1.5)); // some inside spheres
+        random.Direction(&in[8 * s + 4]);
+      }
+      const int gOuts = Vec4s(n2);
+      const std::string body = "  float g[PGI_SH_N2];\n"
+                               "  int used = pgiVisibility(pgiIn0.xyz, pgiIn1.xyz, g);\n"
+                               "  pgiOut0 = vec4(pgiShade(pgiIn1.xyz, g), float(used));\n"
+                               "  pgiOut1 = vec4(pgiShadeUnshadowed(pgiIn1.xyz), 0.0);\n" +
+        Pack("g", n2, 2);
+      std::vector<float> transfers;
+      const bool ran =
+        run("  float h[PGI_SH_N2];\n  pgiDiffuseTransfer(pgiIn1.xyz, h);\n" + Pack("h", n2, 0), 2,
+          gOuts);
+      transfers.swap(out);
+      if (ran && run(body, 2, 2 + gOuts))
+      {
+        proxygi::SoftShadowSettings settings;
+        settings.Order = order;
+        const proxygi::SoftShadows shadows(settings);
+        const proxygi::EnvironmentShading shading(
+          order, lr.data(), lg.data(), lb.data(), proxygi::EnvironmentShading::Path::ProductMatrix);
+        Stats visibility, shaded, unshadowed, transfer;
+        int sameUsed = 0;
+        const int stride = 4 * (2 + gOuts);
+        for (int s = 0; s < samples; ++s)
+        {
+          const float* p = &in[8 * s];
+          const float* nrm = &in[8 * s + 4];
+          float g[sh::MaxCoefficients], h[sh::MaxCoefficients], rgb[3], flat[3];
+          sh::Status status;
+          const int used = shadows.Visibility(p, nrm, blockers, g, status);
+          shading.Shade(nrm, g, rgb);
+          shading.ShadeUnshadowed(nrm, flat);
+          sh::DiffuseTransfer(order, nrm[0], nrm[1], nrm[2], h);
+          const float* row = &out[stride * s];
+          sameUsed += static_cast<int>(row[3]) == used ? 1 : 0;
+          for (int c = 0; c < 3; ++c)
+          {
+            shaded.Add(row[c], rgb[c]);
+            unshadowed.Add(row[4 + c], flat[c]);
+          }
+          for (int i = 0; i < n2; ++i)
+          {
+            visibility.Add(row[8 + i], g[i]);
+            transfer.Add(transfers[4 * gOuts * s + i], h[i]);
+          }
+        }
+        std::printf(
+          "  pgiVisibility: same number of blockers for %d of %d receivers\n", sameUsed, samples);
+        PGI_CHECK(sameUsed >= samples - 2);
+        Report("pgiVisibility vs SoftShadows", order, visibility, 2e-4);
+        Report("pgiDiffuseTransfer vs C++", order, transfer, 2e-6);
+        Report("pgiShade vs Shade (matrix path)", order, shaded, 2e-4);
+        Report("pgiShadeUnshadowed vs C++", order, unshadowed, 2e-6);
+      }
+    }
+  }
+  return pgitest::Result();
+}

@@ -1,0 +1,414 @@
+// ProxyGI per-vertex GI on the GPU: the GLSL twins of the CPU kernels of the
+// SphericalHarmonics and Shading modules. Each function names its C++ twin;
+// TestRenderingGLSLTwins compares every pair. Formulas live in C++: the
+// tables (cap log, optimal linear, product matrix of the light, diffuse
+// transfer) are the arrays the C++ code built, read here from textures and
+// uniforms; the SH square is generated from the triple-product tensor.
+//
+// Needs PGI_SH_ORDER, PGI_SH_N2 (= order^2), PGI_MAX_PLANES defined and
+// pgiSHBasis (pgiSHBasis.glsl) before it.
+
+const float pgiSqrtFourPi = 3.5449077018110320546;
+const float pgiPi = 3.14159265358979323846;
+
+// CapTables (pgiSHTables.h): Resolution rows of order scaled ZH values.
+uniform sampler2D pgiCapLogTable; // R: texel (l, row)
+uniform int pgiCapResolution;
+uniform float pgiCapThetaScale;   // (Resolution - 1) / MaxAngle
+uniform sampler2D pgiOLTable;     // RG: (a, b) at texel (row, 0)
+uniform int pgiOLResolution;
+uniform float pgiOLScale;         // (Resolution - 1) / OLMaxNorm
+// HYB threshold and the range guard's tolerance (< 0: guard off).
+uniform float pgiHybridMaxNorm;
+uniform float pgiRangeTolerance;
+
+// Blockers: spheres (x, y, z, r) in a texture, infinite planes.
+uniform sampler2D pgiProxyTexture;
+uniform int pgiProxyTextureWidth;
+uniform int pgiNumProxies;
+uniform int pgiNumPlanes;
+uniform vec3 pgiPlaneOrigin[PGI_MAX_PLANES];
+uniform vec3 pgiPlaneNormal[PGI_MAX_PLANES];
+uniform float pgiSinMinAngle;
+uniform int pgiSelfShadowRules;
+
+// Environment light: L (per channel), its product matrix M_L and the scaled
+// ZH of the diffuse transfer H (pgiEnvironmentShading.h).
+uniform vec3 pgiLight[PGI_SH_N2];
+uniform sampler2D pgiLightMatrix; // RGB: texel (j, i) = (M_R, M_G, M_B)_ij
+uniform float pgiTransferZH[PGI_SH_ORDER];
+
+// std::asin to float precision. The drivers' built-in asin is an
+// approximation (llvmpipe's is off by up to 3e-4 rad), and its error would
+// pass through the cap table to every visibility vector. Cephes' asinf:
+// polynomial on [0, 0.5], asin(x) = pi/2 - 2 asin(sqrt((1 - x)/2)) above.
+float pgiAsin(float x)
+{
+  float a = abs(x);
+  bool high = a > 0.5;
+  float z = high ? 0.5 * (1.0 - a) : a * a;
+  float w = high ? sqrt(z) : a;
+  float p = ((((4.2163199048e-2 * z + 2.4181311049e-2) * z + 4.5470025998e-2) * z +
+               7.4953002686e-2) * z + 1.6666752422e-1) * z * w + w;
+  float y = high ? 0.5 * pgiPi - 2.0 * p : p;
+  return x < 0.0 ? -y : y;
+}
+
+// CapTables::CapLog (float path): linear interpolation between rows.
+void pgiCapLog(float theta, out float zh[PGI_SH_ORDER])
+{
+  int last = pgiCapResolution - 1;
+  float u = theta * pgiCapThetaScale;
+  u = u > 0.0 ? (u < float(last) ? u : float(last)) : 0.0;
+  int i = int(u);
+  i = i < last ? i : last - 1;
+  float t = u - float(i);
+  for (int l = 0; l < PGI_SH_ORDER; ++l)
+  {
+    float r0 = texelFetch(pgiCapLogTable, ivec2(l, i), 0).r;
+    float r1 = texelFetch(pgiCapLogTable, ivec2(l, i + 1), 0).r;
+    zh[l] = r0 + (r1 - r0) * t;
+  }
+}
+
+// sh::RotateScaledZonal: out_lm = zh_l y_lm(d).
+void pgiRotateScaledZonal(float zh[PGI_SH_ORDER], vec3 d, out float v[PGI_SH_N2])
+{
+  pgiSHBasis(d, v);
+  for (int l = 0; l < PGI_SH_ORDER; ++l)
+  {
+    for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+    {
+      v[i] *= zh[l];
+    }
+  }
+}
+
+// CapTables::OptimalLinear: a(x), b(x); beyond the table the last values.
+void pgiOptimalLinear(float x, out float a, out float b)
+{
+  float u = x * pgiOLScale;
+  int last = pgiOLResolution - 1;
+  if (!(u < float(last)))
+  {
+    vec2 e = texelFetch(pgiOLTable, ivec2(last, 0), 0).rg;
+    a = e.x;
+    b = e.y;
+    return;
+  }
+  int i = u > 0.0 ? int(u) : 0;
+  float t = u - float(i);
+  vec2 e0 = texelFetch(pgiOLTable, ivec2(i, 0), 0).rg;
+  vec2 e1 = texelFetch(pgiOLTable, ivec2(i + 1, 0), 0).rg;
+  a = e0.x + (e1.x - e0.x) * t;
+  b = e0.y + (e1.y - e0.y) * t;
+}
+
+// TripleProduct::Square, the terms of the tensor written out by C++.
+void pgiSHSquare(float f[PGI_SH_N2], out float o[PGI_SH_N2])
+{
+  for (int i = 0; i < PGI_SH_N2; ++i)
+  {
+    o[i] = 0.0;
+  }
+  //PGI::Square::Impl
+}
+
+// HYB's base: OL of f^/2^s, times exp(f0/sqrt(4 pi))^(2^-s) (pgiSHExp.cxx).
+void pgiScaledBase(float fHat[PGI_SH_N2], float norm, float dcExponent, int s,
+  out float g[PGI_SH_N2])
+{
+  float k = exp2(-float(s));
+  float a, b;
+  pgiOptimalLinear(norm * k, a, b);
+  float dc = exp(dcExponent * k);
+  g[0] = a * pgiSqrtFourPi * dc;
+  for (int i = 1; i < PGI_SH_N2; ++i)
+  {
+    g[i] = b * (fHat[i] * k) * dc;
+  }
+}
+
+// sh::GuardRange: remaps g affinely into [-tol, 1 + tol] on the guard's
+// Fibonacci directions when the per-band bound says it may leave it.
+void pgiGuardRange(inout float g[PGI_SH_N2], float tolerance)
+{
+  float mean = g[0] / pgiSqrtFourPi;
+  float bound = 0.0;
+  for (int l = 1; l < PGI_SH_ORDER; ++l)
+  {
+    float band = 0.0;
+    for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+    {
+      band += g[i] * g[i];
+    }
+    bound += sqrt(band * float(2 * l + 1) / (4.0 * pgiPi));
+  }
+  float lo = -tolerance, hi = 1.0 + tolerance;
+  if (mean - bound >= lo && mean + bound <= hi)
+  {
+    return;
+  }
+  int count = max(128, 8 * PGI_SH_N2);
+  float vmin = 3.0e38, vmax = -3.0e38;
+  for (int s = 0; s < count; ++s)
+  {
+    float z = 1.0 - (2.0 * float(s) + 1.0) / float(count);
+    float r = sqrt(max(0.0, 1.0 - z * z));
+    // golden * s reduced mod 2 pi as a fraction of a turn: float keeps its
+    // digits that way (the C++ twin computes phi in double).
+    float phi = 2.0 * pgiPi * fract(float(s) * 0.38196601125010515);
+    float y[PGI_SH_N2];
+    pgiSHBasis(vec3(r * cos(phi), r * sin(phi), z), y);
+    float v = 0.0;
+    for (int i = 0; i < PGI_SH_N2; ++i)
+    {
+      v += g[i] * y[i];
+    }
+    vmin = min(vmin, v);
+    vmax = max(vmax, v);
+  }
+  if (vmin >= lo && vmax <= hi)
+  {
+    return;
+  }
+  float newMin = min(max(vmin, lo), hi);
+  float newMax = max(min(vmax, hi), lo);
+  float range = vmax - vmin;
+  float scale = range > 0.0 ? (newMax - newMin) / range : 0.0;
+  float offset = newMin - vmin * scale;
+  for (int i = 1; i < PGI_SH_N2; ++i)
+  {
+    g[i] *= scale;
+  }
+  g[0] = range > 0.0 ? g[0] * scale + offset * pgiSqrtFourPi : newMin * pgiSqrtFourPi;
+}
+
+// sh::Exp with ExpMethod::Hybrid: DC isolation, OL after scaling |f^| below
+// the threshold, a continuous blend between s and s + 1 squarings, s
+// squarings, then the range guard. Returns false on non-finite results
+// (g is then 0, as the C++ twin leaves it).
+bool pgiExpHybrid(float f[PGI_SH_N2], out float g[PGI_SH_N2])
+{
+  float fHat[PGI_SH_N2] = f;
+  fHat[0] = 0.0;
+  float dcExponent = f[0] / pgiSqrtFourPi;
+  float norm2 = 0.0;
+  for (int i = 1; i < PGI_SH_N2; ++i)
+  {
+    norm2 += fHat[i] * fHat[i];
+  }
+  float norm = sqrt(norm2);
+  int steps = 0;
+  float w = 0.0;
+  if (norm > 0.0)
+  {
+    float u = log2(norm / pgiHybridMaxNorm);
+    if (u > -1.0)
+    {
+      steps = max(0, int(ceil(u)));
+      w = min(1.0, u - float(steps - 1));
+    }
+  }
+  pgiScaledBase(fHat, norm, dcExponent, steps, g);
+  if (w > 0.0)
+  {
+    float finer[PGI_SH_N2], squared[PGI_SH_N2];
+    pgiScaledBase(fHat, norm, dcExponent, steps + 1, finer);
+    pgiSHSquare(finer, squared);
+    for (int i = 0; i < PGI_SH_N2; ++i)
+    {
+      g[i] = (1.0 - w) * g[i] + w * squared[i];
+    }
+  }
+  for (int k = 0; k < steps; ++k)
+  {
+    float squared[PGI_SH_N2];
+    pgiSHSquare(g, squared);
+    g = squared;
+  }
+  bool finite = true;
+  for (int i = 0; i < PGI_SH_N2; ++i)
+  {
+    finite = finite && !isnan(g[i]) && !isinf(g[i]);
+  }
+  if (!finite)
+  {
+    for (int i = 0; i < PGI_SH_N2; ++i)
+    {
+      g[i] = 0.0;
+    }
+    return false;
+  }
+  if (pgiRangeTolerance >= 0.0)
+  {
+    pgiGuardRange(g, pgiRangeTolerance);
+  }
+  return true;
+}
+
+// ReplaceBlocker (pgiSoftShadows.cxx): the continuous self-shadow rules.
+// Receivers on a proxy's surface near the point where their tangent plane
+// touches it (h -> -r, d -> r) make rho - delta a difference of two tiny
+// square roots: PGI_PRECISE keeps the compiler from fusing the products
+// into FMAs there, so the rounding is the C++ twin's.
+bool pgiReplaceBlocker(vec3 p, vec3 n, inout vec3 c, inout float r)
+{
+  PGI_PRECISE vec3 v = c - p;
+  PGI_PRECISE float h = v.x * n.x + v.y * n.y + v.z * n.z;
+  if (h <= -r)
+  {
+    return false;
+  }
+  if (h >= r)
+  {
+    return true;
+  }
+  PGI_PRECISE float d2 = v.x * v.x + v.y * v.y + v.z * v.z;
+  PGI_PRECISE float hh = h * h;
+  PGI_PRECISE float rr = r * r;
+  PGI_PRECISE float rho = sqrt(max(0.0, d2 - hh));
+  PGI_PRECISE float delta = sqrt(max(0.0, rr - hh));
+  vec3 foot = c - h * n;
+  if (d2 < rr)
+  {
+    if (h <= 0.0)
+    {
+      return false;
+    }
+    float ramp = delta > 0.0 ? min(1.0, 2.0 * (delta - rho) / delta) : 0.0;
+    r = h * max(0.0, ramp);
+    return r > 0.0;
+  }
+  float ramp = delta > 0.0 ? min(1.0, (rho - delta) / delta) : 1.0;
+  float halfHeight = 0.5 * (h + r);
+  c = foot + halfHeight * n;
+  r = halfHeight * max(0.0, ramp);
+  return r > 0.0;
+}
+
+void pgiSetConstantOne(out float g[PGI_SH_N2])
+{
+  for (int i = 1; i < PGI_SH_N2; ++i)
+  {
+    g[i] = 0.0;
+  }
+  g[0] = pgiSqrtFourPi;
+}
+
+// Adds the scaled cap log of a blocker of angular radius theta seen in
+// direction d to f.
+void pgiAccumulateCap(float theta, vec3 d, inout float f[PGI_SH_N2])
+{
+  float zh[PGI_SH_ORDER];
+  pgiCapLog(theta, zh);
+  float v[PGI_SH_N2];
+  pgiRotateScaledZonal(zh, d, v);
+  for (int i = 0; i < PGI_SH_N2; ++i)
+  {
+    f[i] += v[i];
+  }
+}
+
+// SoftShadows::Visibility: blockers' log-visibility summed, then HYB exp.
+// Returns the number of blockers accumulated (0: g = 1, no exp run; -1: the
+// exp overflowed and g = 1, as the CPU filter leaves such receivers).
+int pgiVisibility(vec3 p, vec3 n, out float g[PGI_SH_N2])
+{
+  float f[PGI_SH_N2];
+  for (int i = 0; i < PGI_SH_N2; ++i)
+  {
+    f[i] = 0.0;
+  }
+  int used = 0;
+  for (int s = 0; s < pgiNumProxies; ++s)
+  {
+    vec4 sphere =
+      texelFetch(pgiProxyTexture, ivec2(s % pgiProxyTextureWidth, s / pgiProxyTextureWidth), 0);
+    vec3 c = sphere.xyz;
+    float r = sphere.w;
+    if (!(r > 0.0))
+    {
+      continue;
+    }
+    if (pgiSelfShadowRules != 0 && !pgiReplaceBlocker(p, n, c, r))
+    {
+      continue;
+    }
+    vec3 d = c - p;
+    float len = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    if (!(len > 0.0) || r < pgiSinMinAngle * len)
+    {
+      continue;
+    }
+    pgiAccumulateCap(pgiAsin(min(1.0, r / len)), d / len, f);
+    ++used;
+  }
+  for (int k = 0; k < pgiNumPlanes; ++k)
+  {
+    vec3 o = pgiPlaneOrigin[k];
+    vec3 pn = pgiPlaneNormal[k];
+    float height = (p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z;
+    if (!(height > 0.0))
+    {
+      continue;
+    }
+    pgiAccumulateCap(0.5 * pgiPi, -pn, f);
+    ++used;
+  }
+  if (used == 0)
+  {
+    pgiSetConstantOne(g);
+    return 0;
+  }
+  if (!pgiExpHybrid(f, g))
+  {
+    pgiSetConstantOne(g);
+    return -1;
+  }
+  return used;
+}
+
+// sh::DiffuseTransfer: H(N), the clamped cosine over pi rotated to N.
+void pgiDiffuseTransfer(vec3 n, out float h[PGI_SH_N2])
+{
+  pgiSHBasis(n, h);
+  for (int l = 0; l < PGI_SH_ORDER; ++l)
+  {
+    for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+    {
+      h[i] *= pgiTransferZH[l];
+    }
+  }
+}
+
+// EnvironmentShading::Shade, product-matrix path: max(0, (M_L g) . H(N)).
+vec3 pgiShade(vec3 n, float g[PGI_SH_N2])
+{
+  float h[PGI_SH_N2];
+  pgiDiffuseTransfer(n, h);
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < PGI_SH_N2; ++i)
+  {
+    vec3 row = vec3(0.0);
+    for (int j = 0; j < PGI_SH_N2; ++j)
+    {
+      row += texelFetch(pgiLightMatrix, ivec2(j, i), 0).rgb * g[j];
+    }
+    sum += row * h[i];
+  }
+  return max(sum, vec3(0.0));
+}
+
+// EnvironmentShading::ShadeUnshadowed: H(N) . L, exact, not clamped.
+vec3 pgiShadeUnshadowed(vec3 n)
+{
+  float h[PGI_SH_N2];
+  pgiDiffuseTransfer(n, h);
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < PGI_SH_N2; ++i)
+  {
+    sum += pgiLight[i] * h[i];
+  }
+  return sum;
+}

@@ -1,0 +1,2 @@
+//VTK::Color::Impl
+  pgiRadianceVSOutput = pgiRadianceMC.rgb;

@@ -1,0 +1,431 @@
+#include "pgiGIShaders.h"
+
+#include "pgiGIComputeFS.h"
+#include "pgiGIHarnessVS.h"
+#include "pgiGILibrary.h"
+#include "pgiSHBasisGLSL.h"
+
+#include "pgiSHBasis.h"
+#include "pgiSHExp.h"
+#include "pgiSHTables.h"
+#include "pgiSHTripleProduct.h"
+#include "pgiSHZonal.h"
+
+#include "vtkNew.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkTransformFeedback.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace proxygi
+{
+namespace gpu
+{
+
+namespace
+{
+// Shortest float literal GLSL reads back to the same float.
+std::string FloatLiteral(float v)
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.9g", static_cast<double>(v));
+  std::string s(text);
+  if (s.find_first_of(".eEn") == std::string::npos)
+  {
+    s += ".0";
+  }
+  return s;
+}
+
+vtkSmartPointer<vtkTextureObject> FloatTexture(
+  vtkOpenGLRenderWindow* window, int width, int height, int components, std::vector<float>& data)
+{
+  auto texture = vtkSmartPointer<vtkTextureObject>::New();
+  texture->SetContext(window);
+  texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  if (!texture->Create2DFromRaw(static_cast<unsigned int>(width), static_cast<unsigned int>(height),
+        components, VTK_FLOAT, data.data()))
+  {
+    return nullptr;
+  }
+  return texture;
+}
+} // namespace
+
+std::string SquareSource(int order)
+{
+  const sh::TripleProduct& tp = sh::TripleProduct::Get(order);
+  std::ostringstream code;
+  // Same terms, same order, same float coefficients as Square<float>.
+  for (const sh::TripleProduct::Term& t : tp.Terms())
+  {
+    const float v = t.J == t.K ? t.ValueF : 2.0f * t.ValueF;
+    code << "  o[" << t.I << "] += " << FloatLiteral(v) << " * f[" << t.J << "] * f[" << t.K
+         << "];\n";
+  }
+  return code.str();
+}
+
+std::string LibrarySource(int order)
+{
+  std::ostringstream defines;
+  // 'precise' (GLSL 4.00, or ARB_gpu_shader5) where the driver has it: no
+  // FMA contraction in the few places where rounding decides (see
+  // pgiReplaceBlocker).
+  defines << "#ifdef GL_ARB_gpu_shader5\n"
+          << "#extension GL_ARB_gpu_shader5 : enable\n"
+          << "#define PGI_PRECISE precise\n"
+          << "#else\n"
+          << "#define PGI_PRECISE\n"
+          << "#endif\n"
+          << "#define PGI_SH_ORDER " << order << "\n"
+          << "#define PGI_SH_N2 " << order * order << "\n"
+          << "#define PGI_MAX_PLANES " << MaxPlanes << "\n";
+  std::string library = pgiGILibrary;
+  vtkShaderProgram::Substitute(library, "//PGI::Square::Impl", SquareSource(order));
+  return defines.str() + pgiSHBasisGLSL + "\n" + library;
+}
+
+//------------------------------------------------------------------------------
+struct GIResources::Internals
+{
+  int Order = 0;
+  vtkOpenGLRenderWindow* Window = nullptr;
+  vtkSmartPointer<vtkTextureObject> CapLog, OL, LightMatrix, Proxies;
+  int CapResolution = 0, OLResolution = 0;
+  float CapThetaScale = 0.0f, OLScale = 0.0f;
+  std::vector<float> TransferZH;
+  std::vector<float> Light; // n2 x 3
+  std::vector<float> LightMatrixData;
+  bool LightDirty = false;
+  std::vector<float> Spheres, Planes;
+  bool BlockersDirty = true;
+  int ProxyTextureWidth = 1;
+  KernelSettings Settings;
+};
+
+GIResources::GIResources()
+  : Impl(new Internals)
+{
+}
+
+GIResources::~GIResources() = default;
+
+int GIResources::GetOrder() const
+{
+  return this->Impl->Order;
+}
+
+bool GIResources::SetOrder(vtkOpenGLRenderWindow* window, int order)
+{
+  Internals& d = *this->Impl;
+  if (order < MinOrder || order > MaxOrder || !window)
+  {
+    return false;
+  }
+  if (d.Order == order && d.Window == window && d.CapLog && d.OL)
+  {
+    return true;
+  }
+  if (d.Window && d.Window != window)
+  {
+    this->ReleaseGraphicsResources(d.Window);
+  }
+  d.Window = window;
+  d.Order = order;
+  const sh::CapTables& tables = sh::CapTables::Get(order);
+  d.CapResolution = tables.GetResolution();
+  d.CapThetaScale = static_cast<float>((d.CapResolution - 1) / sh::CapTables::MaxAngle);
+  std::vector<float> log(tables.GetLogTable().begin(), tables.GetLogTable().end());
+  d.CapLog = FloatTexture(window, order, d.CapResolution, 1, log);
+  d.OLResolution = tables.GetResolution();
+  d.OLScale = static_cast<float>((d.OLResolution - 1) / tables.GetOptimalLinearMaxNorm());
+  std::vector<float> ol(2 * d.OLResolution);
+  for (int i = 0; i < d.OLResolution; ++i)
+  {
+    ol[2 * i] = static_cast<float>(tables.GetOptimalLinearA()[i]);
+    ol[2 * i + 1] = static_cast<float>(tables.GetOptimalLinearB()[i]);
+  }
+  d.OL = FloatTexture(window, d.OLResolution, 1, 2, ol);
+  // Scaled ZH of H(N): DiffuseTransfer at +z over the basis at +z, per band.
+  double h[sh::MaxCoefficients], y[sh::MaxCoefficients];
+  sh::DiffuseTransfer(order, 0.0, 0.0, 1.0, h);
+  sh::EvaluateBasis(order, 0.0, 0.0, 1.0, y);
+  d.TransferZH.resize(order);
+  for (int l = 0; l < order; ++l)
+  {
+    d.TransferZH[l] = static_cast<float>(h[sh::Index(l, 0)] / y[sh::Index(l, 0)]);
+  }
+  d.LightMatrix = nullptr;
+  d.Light.assign(3 * order * order, 0.0f);
+  d.LightMatrixData.assign(4 * order * order * order * order, 0.0f);
+  d.LightDirty = true;
+  d.BlockersDirty = true;
+  return d.CapLog && d.OL;
+}
+
+void GIResources::SetLight(const double* red, const double* green, const double* blue)
+{
+  Internals& d = *this->Impl;
+  const int n2 = d.Order * d.Order;
+  if (n2 == 0)
+  {
+    return;
+  }
+  const double* channels[3] = { red, green, blue };
+  const sh::TripleProduct& tp = sh::TripleProduct::Get(d.Order);
+  std::vector<double> m(n2 * n2);
+  for (int c = 0; c < 3; ++c)
+  {
+    for (int i = 0; i < n2; ++i)
+    {
+      d.Light[3 * i + c] = static_cast<float>(channels[c][i]);
+    }
+    tp.ProductMatrix(channels[c], m.data());
+    for (int i = 0; i < n2; ++i)
+    {
+      for (int j = 0; j < n2; ++j)
+      {
+        d.LightMatrixData[4 * (i * n2 + j) + c] = static_cast<float>(m[i * n2 + j]);
+      }
+    }
+  }
+  d.LightDirty = true;
+}
+
+void GIResources::SetBlockers(const std::vector<float>& spheres, const std::vector<float>& planes)
+{
+  Internals& d = *this->Impl;
+  d.Spheres = spheres;
+  d.Planes.assign(planes.begin(),
+    planes.begin() + std::min<std::size_t>(planes.size(), 6 * static_cast<std::size_t>(MaxPlanes)));
+  d.BlockersDirty = true;
+}
+
+void GIResources::SetSettings(const KernelSettings& settings)
+{
+  this->Impl->Settings = settings;
+}
+
+void GIResources::Bind(vtkShaderProgram* program)
+{
+  Internals& d = *this->Impl;
+  if (!d.Window || d.Order == 0)
+  {
+    return;
+  }
+  const int n2 = d.Order * d.Order;
+  if (d.LightDirty || !d.LightMatrix)
+  {
+    d.LightMatrix = FloatTexture(d.Window, n2, n2, 4, d.LightMatrixData);
+    d.LightDirty = false;
+  }
+  const int spheres = static_cast<int>(d.Spheres.size() / 4);
+  if (d.BlockersDirty || !d.Proxies)
+  {
+    // Rows of up to 1024 spheres; unused texels have radius 0.
+    d.ProxyTextureWidth = std::max(1, std::min(spheres, 1024));
+    const int rows = std::max(1, (spheres + d.ProxyTextureWidth - 1) / d.ProxyTextureWidth);
+    std::vector<float> texels(4 * static_cast<std::size_t>(d.ProxyTextureWidth) * rows, 0.0f);
+    std::copy(d.Spheres.begin(), d.Spheres.begin() + 4 * spheres, texels.begin());
+    d.Proxies = FloatTexture(d.Window, d.ProxyTextureWidth, rows, 4, texels);
+    d.BlockersDirty = false;
+  }
+  for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get() })
+  {
+    if (t)
+    {
+      t->Activate();
+    }
+  }
+  program->SetUniformi("pgiCapLogTable", d.CapLog->GetTextureUnit());
+  program->SetUniformi("pgiCapResolution", d.CapResolution);
+  program->SetUniformf("pgiCapThetaScale", d.CapThetaScale);
+  program->SetUniformi("pgiOLTable", d.OL->GetTextureUnit());
+  program->SetUniformi("pgiOLResolution", d.OLResolution);
+  program->SetUniformf("pgiOLScale", d.OLScale);
+  const double limit =
+    d.Settings.HybridMaxNorm > 0.0 ? d.Settings.HybridMaxNorm : sh::DefaultHybridMaxNorm(d.Order);
+  program->SetUniformf("pgiHybridMaxNorm", static_cast<float>(limit));
+  program->SetUniformf("pgiRangeTolerance", static_cast<float>(d.Settings.RangeTolerance));
+  program->SetUniformi("pgiProxyTexture", d.Proxies->GetTextureUnit());
+  program->SetUniformi("pgiProxyTextureWidth", d.ProxyTextureWidth);
+  program->SetUniformi("pgiNumProxies", spheres);
+  const int planes = static_cast<int>(d.Planes.size() / 6);
+  std::vector<float> origins(3 * MaxPlanes, 0.0f), normals(3 * MaxPlanes, 0.0f);
+  for (int k = 0; k < planes; ++k)
+  {
+    std::copy(&d.Planes[6 * k], &d.Planes[6 * k] + 3, &origins[3 * k]);
+    std::copy(&d.Planes[6 * k] + 3, &d.Planes[6 * k] + 6, &normals[3 * k]);
+  }
+  program->SetUniformi("pgiNumPlanes", planes);
+  program->SetUniform3fv("pgiPlaneOrigin", MaxPlanes, origins.data());
+  program->SetUniform3fv("pgiPlaneNormal", MaxPlanes, normals.data());
+  program->SetUniformf("pgiSinMinAngle", std::sin(static_cast<float>(d.Settings.MinBlockerAngle)));
+  program->SetUniformi("pgiSelfShadowRules", d.Settings.SelfShadowRules ? 1 : 0);
+  program->SetUniform3fv("pgiLight", n2, d.Light.data());
+  program->SetUniformi("pgiLightMatrix", d.LightMatrix->GetTextureUnit());
+  program->SetUniform1fv("pgiTransferZH", d.Order, d.TransferZH.data());
+}
+
+void GIResources::Unbind()
+{
+  Internals& d = *this->Impl;
+  for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get() })
+  {
+    if (t)
+    {
+      t->Deactivate();
+    }
+  }
+}
+
+void GIResources::ReleaseGraphicsResources(vtkWindow* window)
+{
+  Internals& d = *this->Impl;
+  for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get() })
+  {
+    if (t)
+    {
+      t->ReleaseGraphicsResources(window);
+    }
+  }
+  d.CapLog = d.OL = d.LightMatrix = d.Proxies = nullptr;
+  d.Order = 0;
+  d.Window = nullptr;
+}
+
+//------------------------------------------------------------------------------
+struct GLSLHarness::Internals
+{
+  vtkOpenGLRenderWindow* Window = nullptr;
+  GIResources Resources;
+  std::string Error;
+};
+
+GLSLHarness::GLSLHarness(vtkOpenGLRenderWindow* window)
+  : Impl(new Internals)
+{
+  this->Impl->Window = window;
+}
+
+GLSLHarness::~GLSLHarness()
+{
+  if (this->Impl->Window)
+  {
+    this->Impl->Window->MakeCurrent();
+    this->Impl->Resources.ReleaseGraphicsResources(this->Impl->Window);
+  }
+}
+
+GIResources& GLSLHarness::Resources()
+{
+  return this->Impl->Resources;
+}
+
+const std::string& GLSLHarness::GetError() const
+{
+  return this->Impl->Error;
+}
+
+bool GLSLHarness::Run(int order, const std::string& declarations, const std::string& body,
+  int inputs, int outputs, const std::vector<float>& in, std::vector<float>& out)
+{
+  Internals& d = *this->Impl;
+  d.Error.clear();
+  if (!d.Window || inputs < 1 || outputs < 1 || in.empty() || in.size() % (4 * inputs) != 0)
+  {
+    d.Error = "bad harness arguments";
+    return false;
+  }
+  d.Window->MakeCurrent();
+  if (!d.Resources.SetOrder(d.Window, order))
+  {
+    d.Error = "could not build the tables' textures";
+    return false;
+  }
+  const int count = static_cast<int>(in.size() / (4 * inputs));
+  std::ostringstream dec, varyings;
+  vtkNew<vtkTransformFeedback> capture;
+  for (int k = 0; k < inputs; ++k)
+  {
+    dec << "in vec4 pgiIn" << k << ";\n";
+  }
+  for (int k = 0; k < outputs; ++k)
+  {
+    dec << "out vec4 pgiOut" << k << ";\n";
+    capture->AddVarying(vtkTransformFeedback::Color_RGBA_F, "pgiOut" + std::to_string(k));
+  }
+  dec << declarations << "\n";
+  std::string vs = pgiGIHarnessVS;
+  vtkShaderProgram::Substitute(vs, "//PGI::Defines", "");
+  vtkShaderProgram::Substitute(vs, "//PGI::Library", LibrarySource(order));
+  vtkShaderProgram::Substitute(vs, "//PGI::Harness::Dec", dec.str());
+  vtkShaderProgram::Substitute(vs, "//PGI::Harness::Impl", body);
+  vtkShaderProgram* program =
+    d.Window->GetShaderCache()->ReadyShaderProgram(vs.c_str(), pgiGIComputeFS, "", capture);
+  if (!program)
+  {
+    d.Error = "the harness shader did not compile";
+    return false;
+  }
+  d.Resources.Bind(program);
+
+  vtkNew<vtkOpenGLBufferObject> input;
+  input->Upload(in, vtkOpenGLBufferObject::ArrayBuffer);
+  vtkNew<vtkOpenGLVertexArrayObject> vao;
+  vao->Bind();
+  for (int k = 0; k < inputs; ++k)
+  {
+    const std::string name = "pgiIn" + std::to_string(k);
+    if (program->IsAttributeUsed(name.c_str()) &&
+      !vao->AddAttributeArray(program, input, name, static_cast<int>(16 * k),
+        static_cast<size_t>(16 * inputs), VTK_FLOAT, 4, false))
+    {
+      d.Error = "could not bind attribute " + name;
+    }
+  }
+  vtkNew<vtkOpenGLBufferObject> result;
+  const std::size_t values = static_cast<std::size_t>(count) * 4 * outputs;
+  result->Upload(std::vector<float>(values, 0.0f), vtkOpenGLBufferObject::ArrayBuffer);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, result->GetHandle());
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, count);
+  glEndTransformFeedback();
+  glDisable(GL_RASTERIZER_DISCARD);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  vao->Release();
+  d.Resources.Unbind();
+
+  out.assign(values, 0.0f);
+  glBindBuffer(GL_ARRAY_BUFFER, result->GetHandle());
+  glGetBufferSubData(
+    GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(values * sizeof(float)), out.data());
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    d.Error = "OpenGL error " + std::to_string(error) + " in the harness";
+  }
+  vao->ReleaseGraphicsResources();
+  input->ReleaseGraphicsResources();
+  result->ReleaseGraphicsResources();
+  return d.Error.empty();
+}
+
+} // namespace gpu
+} // namespace proxygi

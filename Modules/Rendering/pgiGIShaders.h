@@ -1,0 +1,126 @@
+/**
+ * @file pgiGIShaders.h
+ * @brief The GPU side of per-vertex GI, shared by vtkPGIGIPolyDataMapper and
+ * the tests: GLSL assembly (the encoded .glsl files plus the SH square
+ * generated from the triple-product tensor), the tables and light uploaded as
+ * textures and uniforms (GIResources), and a transform-feedback harness that
+ * runs any GLSL helper per vertex and reads the results back (GLSLHarness).
+ *
+ * The GLSL twins and their C++ originals:
+ * | GLSL (pgiGILibrary.glsl) | C++ |
+ * |---|---|
+ * | pgiSHBasis | sh::EvaluateBasis (both from the same generator script) |
+ * | pgiCapLog | sh::CapTables::CapLog (float path) |
+ * | pgiRotateScaledZonal | sh::RotateScaledZonal |
+ * | pgiOptimalLinear | sh::CapTables::OptimalLinear |
+ * | pgiSHSquare | sh::TripleProduct::Square (generated from its Terms()) |
+ * | pgiExpHybrid, pgiGuardRange | sh::Exp (HYB), sh::GuardRange |
+ * | pgiReplaceBlocker | proxygi::ReplaceBlocker |
+ * | pgiVisibility | proxygi::SoftShadows::Visibility |
+ * | pgiShade, pgiShadeUnshadowed | proxygi::EnvironmentShading (product-matrix path) |
+ */
+#ifndef pgiGIShaders_h
+#define pgiGIShaders_h
+
+#include "ProxyGIRenderingModule.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+class vtkWindow;
+
+namespace proxygi
+{
+namespace gpu
+{
+
+/// SH orders the GLSL supports (the generated basis has bands 0..5).
+constexpr int MinOrder = 2;
+constexpr int MaxOrder = 6;
+/// Infinite blocker planes the kernel takes.
+constexpr int MaxPlanes = 8;
+
+/// GLSL statements of TripleProduct::Square for one order (o = f * f).
+PROXYGIRENDERING_EXPORT std::string SquareSource(int order);
+
+/// The GI library for one order: #defines, the SH basis, pgiGILibrary.glsl.
+PROXYGIRENDERING_EXPORT std::string LibrarySource(int order);
+
+/// Knobs of the kernel that are uniforms (SoftShadowSettings' twins).
+struct KernelSettings
+{
+  /// Blockers subtending less than this (radians) are skipped.
+  double MinBlockerAngle = 0.002;
+  bool SelfShadowRules = true;
+  /// HYB threshold; <= 0: sh::DefaultHybridMaxNorm(order).
+  double HybridMaxNorm = 0.0;
+  /// Range guard tolerance of sh::Exp; < 0 switches the guard off.
+  double RangeTolerance = 0.5;
+};
+
+/**
+ * Tables, light and blockers on the GPU for one order: the cap log-visibility
+ * and optimal-linear tables of sh::CapTables, the light's product matrix
+ * (sh::TripleProduct::ProductMatrix, per channel), the light vector, the
+ * scaled ZH of the diffuse transfer, the proxies as a float texture.
+ */
+class PROXYGIRENDERING_EXPORT GIResources
+{
+public:
+  GIResources();
+  ~GIResources();
+  GIResources(const GIResources&) = delete;
+  GIResources& operator=(const GIResources&) = delete;
+
+  /// Builds the table textures for this order in this context (cached).
+  bool SetOrder(vtkOpenGLRenderWindow* window, int order);
+  int GetOrder() const;
+  /// Light: order^2 SH coefficients per channel (radiance), in double.
+  void SetLight(const double* red, const double* green, const double* blue);
+  /// Spheres as x, y, z, r (4 floats each); planes as origin, unit normal (6 each).
+  void SetBlockers(const std::vector<float>& spheres, const std::vector<float>& planes);
+  void SetSettings(const KernelSettings& settings);
+
+  /// Activates the textures and sets every uniform on a bound program.
+  void Bind(vtkShaderProgram* program);
+  /// Frees the texture units Bind took.
+  void Unbind();
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
+/**
+ * Runs GLSL per vertex with transform feedback: `inputs` vec4 attributes
+ * pgiIn0.. (one row of 4 * inputs floats per vertex), `outputs` vec4
+ * varyings pgiOut0.. captured and read back. `body` is the main() code;
+ * `declarations` go before main (helper functions). The GI library of the
+ * order is included, with Resources() bound.
+ */
+class PROXYGIRENDERING_EXPORT GLSLHarness
+{
+public:
+  explicit GLSLHarness(vtkOpenGLRenderWindow* window);
+  ~GLSLHarness();
+  GLSLHarness(const GLSLHarness&) = delete;
+  GLSLHarness& operator=(const GLSLHarness&) = delete;
+
+  GIResources& Resources();
+  bool Run(int order, const std::string& declarations, const std::string& body, int inputs,
+    int outputs, const std::vector<float>& in, std::vector<float>& out);
+  const std::string& GetError() const;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
+} // namespace gpu
+} // namespace proxygi
+
+#endif

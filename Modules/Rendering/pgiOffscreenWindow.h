@@ -1,0 +1,48 @@
+/**
+ * @file pgiOffscreenWindow.h
+ * @brief A render window for programs and tests without a screen, picked
+ * from what this process can use:
+ *
+ * | path | when | window |
+ * |---|---|---|
+ * | EGL | no DISPLAY (or the X server does not answer), ProxyGI built with EGL |
+ * vtkPGIEGLRenderWindow: first hardware EGL device (the NVIDIA GPU), else Mesa surfaceless
+ * (llvmpipe) | | GLX | DISPLAY set and reachable (a desktop, Xvfb) | VTK's X window, offscreen | |
+ * OSMesa | VTK itself built with VTK_OPENGL_HAS_OSMESA, nothing else worked | VTK's OSMesa window |
+ *
+ * The environment variable PROXYGI_OFFSCREEN=egl|glx|osmesa forces a path
+ * (auto otherwise); PROXYGI_EGL_DEVICE picks an EGL device by index.
+ * The description says which path was taken and why, and, once the context
+ * exists, the GL renderer and version.
+ */
+#ifndef pgiOffscreenWindow_h
+#define pgiOffscreenWindow_h
+
+#include "ProxyGIRenderingModule.h"
+#include "vtkSmartPointer.h"
+
+#include <string>
+
+class vtkRenderWindow;
+
+namespace proxygi
+{
+
+/**
+ * A new offscreen render window (offscreen rendering on, size 300x300), or
+ * null when no path works; `description` (optional) receives the path taken,
+ * e.g. "EGL surfaceless (Mesa): llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5
+ * (Core Profile) Mesa 22.3.6", or why none worked.
+ */
+PROXYGIRENDERING_EXPORT vtkSmartPointer<vtkRenderWindow> NewOffscreenRenderWindow(
+  std::string* description = nullptr);
+
+/// The GL renderer and version of a window (initialises its context if needed).
+PROXYGIRENDERING_EXPORT std::string DescribeRenderWindowContext(vtkRenderWindow* window);
+
+/// Which paths this build has: "EGL GLX", "GLX OSMesa", ...
+PROXYGIRENDERING_EXPORT std::string AvailableOffscreenPaths();
+
+} // namespace proxygi
+
+#endif

@@ -1,0 +1,96 @@
+/**
+ * @class   vtkPGIEGLRenderWindow
+ * @brief   An offscreen render window on an EGL context this class makes
+ *          itself: no X server, and no VTK built with EGL needed.
+ *
+ * Debian's VTK is an X build (VTK_OPENGL_HAS_EGL off), so its own EGL window
+ * is not there. This window is a vtkGenericOpenGLRenderWindow that owns its
+ * context: an EGL display (the first hardware EGL device, e.g. an NVIDIA GPU,
+ * through EGL_EXT_device_enumeration; else Mesa's surfaceless platform, i.e.
+ * llvmpipe; else the default display), a pbuffer config, a desktop OpenGL
+ * 3.2+ core context, and a pbuffer surface of the window's size. It answers
+ * MakeCurrent/IsCurrent/SupportsOpenGL/IsDirect itself and initialises VTK's
+ * OpenGL state from that context.
+ *
+ * Programs using it must link the ProxyGIGlewShim library before VTK's
+ * (ProxyGI::Rendering adds it to its users' link lines): the system GLEW is
+ * the GLX flavour and fails on EGL contexts without it. CreateContext()
+ * reports a missing shim as an error instead of rendering half-initialised.
+ *
+ * | property | default | meaning |
+ * |---|---|---|
+ * | DeviceIndex | -1 | EGL device to use; -1: the first hardware device, else surfaceless.
+ * The environment variable PROXYGI_EGL_DEVICE sets it too. |
+ */
+#ifndef vtkPGIEGLRenderWindow_h
+#define vtkPGIEGLRenderWindow_h
+
+#include "ProxyGIRenderingModule.h"
+#include "vtkGenericOpenGLRenderWindow.h"
+
+#include <memory>
+#include <string>
+
+class PROXYGIRENDERING_EXPORT vtkPGIEGLRenderWindow : public vtkGenericOpenGLRenderWindow
+{
+public:
+  static vtkPGIEGLRenderWindow* New();
+  vtkTypeMacro(vtkPGIEGLRenderWindow, vtkGenericOpenGLRenderWindow);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// EGL device index (-1: automatic). Takes effect before the context exists.
+  vtkSetMacro(DeviceIndex, int);
+  vtkGetMacro(DeviceIndex, int);
+
+  /**
+   * Makes the EGL display, context and surface now (Render does it on demand).
+   * Returns false, with the reason in GetContextError(), when no EGL context
+   * can be had or the glewInit shim is not in effect; nothing is logged as an
+   * error so callers can fall back to another window type.
+   */
+  bool CreateContext();
+  /// Why CreateContext() failed ("" if it did not).
+  const std::string& GetContextError() const { return this->ContextError; }
+  /// How the context was made, e.g. "EGL device 0 (EGL_NV_device_cuda ...)".
+  const std::string& GetPlatformDescription() const { return this->PlatformDescription; }
+  /// GL_RENDERER and GL_VERSION of the context (after CreateContext()).
+  const std::string& GetRendererDescription() const { return this->RendererDescription; }
+
+  /// True when the glewInit shim of ProxyGI is the glewInit this process uses.
+  static bool IsGlewShimActive();
+
+  void Initialize() override;
+  void Finalize() override;
+  void Start() override;
+  void MakeCurrent() override;
+  void ReleaseCurrent() override;
+  bool IsCurrent() override;
+  int SupportsOpenGL() override;
+  vtkTypeBool IsDirect() override;
+  void SetSize(int width, int height) override;
+  void SetSize(int a[2]) override { this->SetSize(a[0], a[1]); }
+  void* GetGenericContext() override;
+  void* GetGenericDisplayId() override;
+
+protected:
+  vtkPGIEGLRenderWindow();
+  ~vtkPGIEGLRenderWindow() override;
+
+  bool EnsureSurface();
+  void DestroyContext();
+
+  int DeviceIndex = -1;
+  std::string ContextError;
+  std::string PlatformDescription;
+  std::string RendererDescription;
+  bool VTKInitialized = false;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> EGL;
+
+  vtkPGIEGLRenderWindow(const vtkPGIEGLRenderWindow&) = delete;
+  void operator=(const vtkPGIEGLRenderWindow&) = delete;
+};
+
+#endif

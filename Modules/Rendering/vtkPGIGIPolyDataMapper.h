@@ -1,0 +1,177 @@
+/**
+ * @class   vtkPGIGIPolyDataMapper
+ * @brief   Per-vertex global illumination on the GPU: SHEXP soft shadows from
+ *          sphere proxies under SH environment light, the GPU twin of
+ *          vtkPGIGlobalIllumination's DirectShadowed array.
+ *
+ * A vtkOpenGLPolyDataMapper that, before drawing, runs a GI pass: one GL
+ * point per mesh point through a vertex shader (rasterisation off) that sums
+ * the proxies' log-visibility vectors (cap-log table texture, ZH rotation
+ * with the SH basis in GLSL, self-shadow rules), exponentiates them (HYB:
+ * optimal-linear table texture, SH squares generated from the triple-product
+ * tensor, range guard) and shades with the light's product matrix. The
+ * results are captured by transform feedback into a buffer that the surface
+ * pass reads as a per-vertex attribute and interpolates. The GI pass runs
+ * only when something it depends on changed (mesh, proxies, light, actor
+ * matrix, knobs), so camera moves cost no GI; AlwaysRecompute forces it every
+ * frame (for timing). Tables come from the SphericalHarmonics module, the
+ * GLSL from .glsl files encoded at build time (see pgiGIShaders.h).
+ *
+ * Inputs: the mesh (point normals used if present, else computed as the CPU
+ * filter does), the proxies (SetProxies: points with a "Radius" array; only
+ * Level 0 when a "Level" array is present), the light (SetLighting; a
+ * uniform white sky if none), infinite blocker planes (AddBlockerPlane).
+ * Proxies and planes are in world coordinates; the mesh follows its actor's
+ * matrix.
+ *
+ * | property | default | meaning |
+ * |---|---|---|
+ * | GlobalIllumination | on | off: a plain vtkOpenGLPolyDataMapper |
+ * | Shadows | on | off: unshadowed environment light |
+ * | Order | 4 | SH order 2..6; cost ~n^2 per proxy and ~n^4 per vertex |
+ * | Albedo | 0.8 0.8 0.8 | diffuse albedo where the mesh has no AlbedoArrayName array |
+ * | AlbedoArrayName | "Albedo" | per-point albedo (3 components, 0..1 or 0..255 bytes) |
+ * | SelfShadowRules | on | SHEXP 6.2 replacement rules, made continuous |
+ * | MinBlockerAngle | 0.002 | radians; smaller blockers are skipped |
+ * | HybridMaxNorm | 0 | HYB threshold; 0: sh::DefaultHybridMaxNorm(order) |
+ * | RangeTolerance | 0.5 | sh::Exp's range guard; < 0 switches it off |
+ * | Exposure | 1 | scale of the radiance written to the image |
+ * | SRGBOutput | on | encode the image sRGB (the project's PNGs are sRGB) |
+ * | CombineWithVTKLighting | off | on: GI is added to VTK's own lighting (e.g. specular
+ * highlights, lights GI does not cover); off: GI replaces it |
+ * | CaptureVisibility | off | also keep the per-vertex SH visibility (read back with
+ * GetPerVertexResults) |
+ * | AlwaysRecompute | off | run the GI pass every frame even if nothing changed |
+ *
+ * Not on the GPU yet (the CPU filter has them): exp methods other than HYB,
+ * AccumulationOrder, windowing, hierarchy cuts, indirect light, local lights.
+ * The surface pass needs no geometry shader (no wide lines or edges).
+ *
+ * Errors: proxies without "Radius" or with NaN/Inf/negative values, a bad
+ * environment (vtkErrorMacro; the mesh is then drawn with VTK's lighting).
+ */
+#ifndef vtkPGIGIPolyDataMapper_h
+#define vtkPGIGIPolyDataMapper_h
+
+#include "ProxyGIRenderingModule.h"
+#include "vtkOpenGLPolyDataMapper.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkFloatArray;
+class vtkPGILighting;
+class vtkPolyData;
+
+class PROXYGIRENDERING_EXPORT vtkPGIGIPolyDataMapper : public vtkOpenGLPolyDataMapper
+{
+public:
+  static vtkPGIGIPolyDataMapper* New();
+  vtkTypeMacro(vtkPGIGIPolyDataMapper, vtkOpenGLPolyDataMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Sphere proxies: points with a "Radius" point array (world coordinates).
+  virtual void SetProxies(vtkPolyData* proxies);
+  vtkGetObjectMacro(Proxies, vtkPolyData);
+
+  virtual void SetLighting(vtkPGILighting* lighting);
+  vtkGetObjectMacro(Lighting, vtkPGILighting);
+
+  /// Infinite planes blocking the half-space beneath them (at most 8).
+  void AddBlockerPlane(const double origin[3], const double normal[3]);
+  void RemoveAllBlockerPlanes();
+
+  vtkSetMacro(GlobalIllumination, bool);
+  vtkGetMacro(GlobalIllumination, bool);
+  vtkBooleanMacro(GlobalIllumination, bool);
+  vtkSetMacro(Shadows, bool);
+  vtkGetMacro(Shadows, bool);
+  vtkBooleanMacro(Shadows, bool);
+  vtkSetClampMacro(Order, int, 2, 6);
+  vtkGetMacro(Order, int);
+  vtkSetVector3Macro(Albedo, double);
+  vtkGetVector3Macro(Albedo, double);
+  vtkSetStringMacro(AlbedoArrayName);
+  vtkGetStringMacro(AlbedoArrayName);
+  vtkSetMacro(SelfShadowRules, bool);
+  vtkGetMacro(SelfShadowRules, bool);
+  vtkBooleanMacro(SelfShadowRules, bool);
+  vtkSetClampMacro(MinBlockerAngle, double, 0.0, 0.5);
+  vtkGetMacro(MinBlockerAngle, double);
+  vtkSetClampMacro(HybridMaxNorm, double, 0.0, 10.0);
+  vtkGetMacro(HybridMaxNorm, double);
+  vtkSetMacro(RangeTolerance, double);
+  vtkGetMacro(RangeTolerance, double);
+  vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Exposure, double);
+  vtkSetMacro(SRGBOutput, bool);
+  vtkGetMacro(SRGBOutput, bool);
+  vtkBooleanMacro(SRGBOutput, bool);
+  vtkSetMacro(CombineWithVTKLighting, bool);
+  vtkGetMacro(CombineWithVTKLighting, bool);
+  vtkBooleanMacro(CombineWithVTKLighting, bool);
+  vtkSetMacro(CaptureVisibility, bool);
+  vtkGetMacro(CaptureVisibility, bool);
+  vtkBooleanMacro(CaptureVisibility, bool);
+  vtkSetMacro(AlwaysRecompute, bool);
+  vtkGetMacro(AlwaysRecompute, bool);
+  vtkBooleanMacro(AlwaysRecompute, bool);
+
+  /**
+   * Reads back the results of the last GI pass, in point order: radiance
+   * (3 components, exit radiance with albedo, as DirectShadowed) and, with
+   * CaptureVisibility, the SH visibility (order^2 components, as Visibility).
+   * Needs a rendered frame; false if there is none.
+   */
+  bool GetPerVertexResults(vtkFloatArray* radiance, vtkFloatArray* visibility = nullptr);
+
+  /// How many times the GI pass ran (it is skipped when nothing changed).
+  vtkGetMacro(NumberOfGIUpdates, int);
+  /// What the last frame did and why, one line (e.g. for logs).
+  const std::string& GetGIStatus() const { return this->GIStatus; }
+
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkPGIGIPolyDataMapper();
+  ~vtkPGIGIPolyDataMapper() override;
+
+  void RenderPieceStart(vtkRenderer* ren, vtkActor* act) override;
+  void ReplaceShaderValues(
+    std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
+  bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+  void SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+
+  /// Runs the GI pass if anything it depends on changed; false if GI is off.
+  bool UpdateGI(vtkRenderer* ren, vtkActor* act);
+
+  vtkPolyData* Proxies = nullptr;
+  vtkPGILighting* Lighting = nullptr;
+  std::vector<double> BlockerPlanes; // origin, normal
+  bool GlobalIllumination = true;
+  bool Shadows = true;
+  int Order = 4;
+  double Albedo[3] = { 0.8, 0.8, 0.8 };
+  char* AlbedoArrayName = nullptr;
+  bool SelfShadowRules = true;
+  double MinBlockerAngle = 0.002;
+  double HybridMaxNorm = 0.0;
+  double RangeTolerance = 0.5;
+  double Exposure = 1.0;
+  bool SRGBOutput = true;
+  bool CombineWithVTKLighting = false;
+  bool CaptureVisibility = false;
+  bool AlwaysRecompute = false;
+  int NumberOfGIUpdates = 0;
+  std::string GIStatus;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> GPU;
+
+  vtkPGIGIPolyDataMapper(const vtkPGIGIPolyDataMapper&) = delete;
+  void operator=(const vtkPGIGIPolyDataMapper&) = delete;
+};
+
+#endif
