@@ -76,8 +76,14 @@ bool AddProxySpheres(ReferenceTracer& tracer, vtkPolyData* proxies, const double
     error = "proxies need a \"Radius\" point array";
     return false;
   }
+  // Only the leaves (Level 0) are geometry; hierarchy parents bound them.
+  vtkDataArray* level = proxies->GetPointData()->GetArray("Level");
   for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
   {
+    if (level && level->GetTuple1(i) != 0.0)
+    {
+      continue;
+    }
     double c[3], a[3];
     proxies->GetPoint(i, c);
     AlbedoOf(proxies, albedoArray, i, defaultAlbedo, a);

@@ -62,7 +62,8 @@ bool ReplaceBlocker(const float p[3], const float n[3], float c[3], float& r)
     return r > 0.0f;
   }
   // Outside and cut by T_p: diameter from q0 = c + r n down to q1 = F + (r + h) n - (r + h) n.
-  const float ramp = delta > 0.0f ? std::min(1.0f, (rho - delta) / delta) : 1.0f;
+  // rho - delta as (d^2 - r^2) / (rho + delta): no cancellation at the rim.
+  const float ramp = delta > 0.0f ? std::min(1.0f, (d2 - r * r) / (rho + delta) / delta) : 1.0f;
   const float half = 0.5f * (h + r);
   for (int k = 0; k < 3; ++k)
   {
