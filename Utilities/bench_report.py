@@ -71,6 +71,13 @@ def replace(doc, name, body):
 
 
 def main():
+    if sys.argv[1] == "--section":
+        # bench_report.py --section NAME TABLE.md DOCUMENT.md: a program's
+        # own Markdown output between the NAME markers.
+        doc = open(sys.argv[4]).read()
+        doc = replace(doc, sys.argv[2], open(sys.argv[3]).read())
+        open(sys.argv[4], "w").write(doc)
+        return
     context, rows = load(sys.argv[1])
     doc = open(sys.argv[2]).read()
     machine = (f"{context.get('num_cpus')} CPUs at {context.get('mhz_per_cpu')} MHz, "

@@ -11,3 +11,18 @@ mkdir -p "$out"
   --benchmark_report_aggregates_only=true \
   --benchmark_out="$out/sh.json" --benchmark_out_format=json
 python3 "$here/Utilities/bench_report.py" "$out/sh.json" "$here/Documentation/AccuracyTime.md"
+
+# Accuracy against time of every GI knob, against the Embree reference
+# (minutes: references are cached in $out/cache). Its figure goes to
+# Documentation/figures, its table into the report.
+if [ -x "$build/bin/ProxyGISweepGI" ]; then
+  run=()
+  if [ -z "${DISPLAY:-}" ]; then run=(xvfb-run -a -s "-screen 0 1280x1024x24"); fi
+  mkdir -p "$here/Documentation/figures"
+  "${run[@]}" "$build/bin/ProxyGISweepGI" --cache "$out/cache" \
+    --out "$here/Documentation/figures/gi-sweep" \
+    "$here/Testing/Data/sphere-over-plane.json" "$here/Testing/Data/objects-on-plane.json" \
+    "$here/Testing/Data/bent-cylinder.json"
+  python3 "$here/Utilities/bench_report.py" --section gi-sweep \
+    "$here/Documentation/figures/gi-sweep.md" "$here/Documentation/AccuracyTime.md"
+fi

@@ -75,6 +75,10 @@ fetch_data() {
     cp "$x"/data/meshes/*.off "$meshes"/
     rm -rf "$x"
   fi
+  if [ ! -f "$meshes/bent-cylinder.off" ]; then
+    mkdir -p "$meshes"
+    python3 "$here/Utilities/make_bent_cylinder.py" "$meshes/bent-cylinder.off"
+  fi
   if [ ! -f "$envs/forest.exr" ]; then
     echo "setup: fetching HDR environments (blender-data)"
     local x

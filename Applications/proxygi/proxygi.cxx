@@ -60,6 +60,25 @@ bool Flag(const Args& args, const std::string& name)
   return false;
 }
 
+std::string Positional(const Args& args, const std::vector<std::string>& flags)
+{
+  for (std::size_t i = 0; i < args.size(); ++i)
+  {
+    if (args[i].size() > 1 && args[i][0] == '-')
+    {
+      bool valueless = false;
+      for (const std::string& f : flags)
+      {
+        valueless = valueless || args[i] == f;
+      }
+      i += valueless ? 0 : 1;
+      continue;
+    }
+    return args[i];
+  }
+  return std::string();
+}
+
 } // namespace cli
 } // namespace proxygi
 
@@ -68,10 +87,11 @@ namespace
 const char* Usage = R"(usage: proxygi <command> [options]
 
 Commands:
-  render     Render a scene with SH soft shadows; write the image, print time
-             and error. Without a scene file: the built-in analytic scene (a
-             sphere over a plane under uniform sky), compared with its closed
-             form. Run 'proxygi render --help'.
+  render     Render a scene (JSON file, default: the bunny over a plane under
+             the forest map) with SH soft shadows, indirect and local lights;
+             write the image, print the plan, time and error against a cached
+             Embree reference. --analytic: the sphere-over-plane scene against
+             its closed form. Run 'proxygi render --help'.
   sh         Spherical-harmonics tools: cap visibility and log-visibility,
              exp round trips per method, projection of test functions.
              Run 'proxygi sh --help'.

@@ -13,6 +13,10 @@ using Args = std::vector<std::string>;
 
 int RunSH(const Args& args);
 int RunRender(const Args& args);
+/// The analytic scene (sphere over plane against its closed form).
+int RunRenderAnalytic(const Args& args);
+/// A scene file (or the default bunny scene) through the GI filter.
+int RunRenderScene(const Args& args, const std::string& scenePath);
 int RunReference(const Args& args);
 int RunProxies(const Args& args);
 
@@ -20,6 +24,9 @@ int RunProxies(const Args& args);
 std::string Option(const Args& args, const std::string& name, const std::string& fallback);
 double NumberOption(const Args& args, const std::string& name, double fallback, bool& ok);
 bool Flag(const Args& args, const std::string& name);
+/// The first argument that is neither an option, an option's value, nor one
+/// of the value-less `flags`.
+std::string Positional(const Args& args, const std::vector<std::string>& flags);
 } // namespace cli
 } // namespace proxygi
 

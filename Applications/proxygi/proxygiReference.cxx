@@ -81,17 +81,7 @@ int RunReference(const Args& args)
     return 2;
   }
   // The scene: the first argument that is not an option or an option's value.
-  std::string scenePath;
-  for (std::size_t i = 0; i < args.size(); ++i)
-  {
-    if (args[i].size() > 1 && args[i][0] == '-')
-    {
-      ++i;
-      continue;
-    }
-    scenePath = args[i];
-    break;
-  }
+  const std::string scenePath = Positional(args, {});
   SceneDescription scene = DefaultScene();
   std::string error;
   if (!scenePath.empty() && !LoadScene(scenePath, scene, error))

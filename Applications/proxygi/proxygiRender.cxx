@@ -1,5 +1,4 @@
-// proxygi render: the main job. Until the scene renderer exists (issues #4 to
-// #6) it renders the built-in analytic scene: a sphere floating over a plane
+// proxygi render --analytic: the built-in analytic scene, a sphere floating over a plane
 // under a uniform white sky, plane shaded per pixel with SH soft shadows
 // (tabulated cap log, SH exp, diffuse transfer), compared with the closed
 // form E = pi (1 - (r/d)^2 cos(beta)), valid because the sphere never dips
@@ -31,7 +30,28 @@ using namespace proxygi::sh;
 
 namespace
 {
-const char* Usage = R"(usage: proxygi render [options]
+const char* Usage = R"(usage: proxygi render [scene.json] [options]
+
+Renders a scene (default: the bunny over a ground plane under the forest map)
+with per-vertex SH soft shadows, one-bounce indirect light from the proxies
+and planes, and local lights (vtkPGIGlobalIllumination), offscreen through
+VTK; prints the plan, the time per stage and the per-vertex error against the
+Embree reference of the same scene (computed once, cached).
+
+  -o FILE             output PNG (default proxygi-render.png)
+  --cache DIR         proxies and references are cached here (proxygi-cache)
+  --order N           SH order 2..8 (default 4)
+  --method M          exp method: HYB (default), OL, PS*, PS
+  --spheres N         proxy spheres per mesh (default 64)
+  --indirect M        one-bounce light: shadowed (default; spherical lights,
+                      Guerrero 2008), unshadowed (Sloan 2007), off
+  --size WxH          image size (default: the scene's)
+  --reference-spp N   samples per vertex of the reference (default 1024)
+  --exposure E        tone-mapping scale (default: 95th percentile to 0.8)
+  --no-error          skip the reference and the error
+  --vtp PREFIX        also write each object's per-vertex arrays to PREFIX-<name>.vtp
+
+proxygi render --analytic [options]
 
 Renders the built-in analytic scene (a sphere of radius R at height H over a
 plane, uniform sky of radiance 1, diffuse albedo A), seen from above. The
@@ -56,6 +76,20 @@ struct Scene
 } // namespace
 
 int RunRender(const Args& args)
+{
+  if (Flag(args, "--help"))
+  {
+    std::fputs(Usage, stdout);
+    return 0;
+  }
+  if (Flag(args, "--analytic"))
+  {
+    return RunRenderAnalytic(args);
+  }
+  return RunRenderScene(args, Positional(args, { "--no-error", "--analytic" }));
+}
+
+int RunRenderAnalytic(const Args& args)
 {
   if (Flag(args, "--help"))
   {

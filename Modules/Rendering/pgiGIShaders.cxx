@@ -7,15 +7,19 @@
 
 #include "pgiSHBasis.h"
 #include "pgiSHExp.h"
+#include "pgiSHLightTables.h"
 #include "pgiSHTables.h"
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
 
+#include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLVertexArrayObject.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
@@ -65,6 +69,43 @@ vtkSmartPointer<vtkTextureObject> FloatTexture(
 }
 } // namespace
 
+bool ReadProxies(vtkPolyData* proxies, std::vector<float>& spheres, std::string& error)
+{
+  spheres.clear();
+  if (!proxies || proxies->GetNumberOfPoints() == 0)
+  {
+    return true;
+  }
+  vtkDataArray* radius = proxies->GetPointData()->GetArray("Radius");
+  if (!radius)
+  {
+    error = "the proxies need a \"Radius\" point array";
+    return false;
+  }
+  vtkDataArray* level = proxies->GetPointData()->GetArray("Level");
+  for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
+  {
+    double c[3];
+    proxies->GetPoint(i, c);
+    const double r = radius->GetTuple1(i);
+    if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]) || !std::isfinite(r) ||
+      r < 0.0)
+    {
+      std::ostringstream m;
+      m << "proxy " << i << " has a NaN, Inf or negative centre or radius";
+      error = m.str();
+      spheres.clear();
+      return false;
+    }
+    if (level && level->GetTuple1(i) != 0.0)
+    {
+      continue;
+    }
+    spheres.insert(spheres.end(), { float(c[0]), float(c[1]), float(c[2]), float(r) });
+  }
+  return true;
+}
+
 std::string SquareSource(int order)
 {
   const sh::TripleProduct& tp = sh::TripleProduct::Get(order);
@@ -105,6 +146,10 @@ struct GIResources::Internals
   int Order = 0;
   vtkOpenGLRenderWindow* Window = nullptr;
   vtkSmartPointer<vtkTextureObject> CapLog, OL, LightMatrix, Proxies;
+  // Cap visibility and the averaged-indirect D(theta) (indirect light).
+  vtkSmartPointer<vtkTextureObject> CapVis, DTable;
+  int DResolution = 0;
+  float DThetaScale = 0.0f;
   int CapResolution = 0, OLResolution = 0;
   float CapThetaScale = 0.0f, OLScale = 0.0f;
   std::vector<float> TransferZH;
@@ -136,7 +181,7 @@ bool GIResources::SetOrder(vtkOpenGLRenderWindow* window, int order)
   {
     return false;
   }
-  if (d.Order == order && d.Window == window && d.CapLog && d.OL)
+  if (d.Order == order && d.Window == window && d.CapLog && d.OL && d.CapVis && d.DTable)
   {
     return true;
   }
@@ -151,6 +196,14 @@ bool GIResources::SetOrder(vtkOpenGLRenderWindow* window, int order)
   d.CapThetaScale = static_cast<float>((d.CapResolution - 1) / sh::CapTables::MaxAngle);
   std::vector<float> log(tables.GetLogTable().begin(), tables.GetLogTable().end());
   d.CapLog = FloatTexture(window, order, d.CapResolution, 1, log);
+  std::vector<float> vis(tables.GetVisibilityTable().begin(), tables.GetVisibilityTable().end());
+  d.CapVis = FloatTexture(window, order, d.CapResolution, 1, vis);
+  const sh::IndirectTables& indirect = sh::IndirectTables::Get(order);
+  d.DResolution = indirect.GetResolution();
+  d.DThetaScale = static_cast<float>((d.DResolution - 1) / sh::IndirectTables::MaxAngle);
+  std::vector<float> averaged(
+    indirect.GetAveragedIndirectTable().begin(), indirect.GetAveragedIndirectTable().end());
+  d.DTable = FloatTexture(window, order, d.DResolution, 1, averaged);
   d.OLResolution = tables.GetResolution();
   d.OLScale = static_cast<float>((d.OLResolution - 1) / tables.GetOptimalLinearMaxNorm());
   std::vector<float> ol(2 * d.OLResolution);
@@ -174,7 +227,7 @@ bool GIResources::SetOrder(vtkOpenGLRenderWindow* window, int order)
   d.LightMatrixData.assign(4 * order * order * order * order, 0.0f);
   d.LightDirty = true;
   d.BlockersDirty = true;
-  return d.CapLog && d.OL;
+  return d.CapLog && d.OL && d.CapVis && d.DTable;
 }
 
 void GIResources::SetLight(const double* red, const double* green, const double* blue)
@@ -244,13 +297,18 @@ void GIResources::Bind(vtkShaderProgram* program)
     d.Proxies = FloatTexture(d.Window, d.ProxyTextureWidth, rows, 4, texels);
     d.BlockersDirty = false;
   }
-  for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get() })
+  for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get(),
+         d.CapVis.Get(), d.DTable.Get() })
   {
     if (t)
     {
       t->Activate();
     }
   }
+  program->SetUniformi("pgiCapVisTable", d.CapVis->GetTextureUnit());
+  program->SetUniformi("pgiDTable", d.DTable->GetTextureUnit());
+  program->SetUniformi("pgiDResolution", d.DResolution);
+  program->SetUniformf("pgiDThetaScale", d.DThetaScale);
   program->SetUniformi("pgiCapLogTable", d.CapLog->GetTextureUnit());
   program->SetUniformi("pgiCapResolution", d.CapResolution);
   program->SetUniformf("pgiCapThetaScale", d.CapThetaScale);
@@ -284,7 +342,8 @@ void GIResources::Bind(vtkShaderProgram* program)
 void GIResources::Unbind()
 {
   Internals& d = *this->Impl;
-  for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get() })
+  for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get(),
+         d.CapVis.Get(), d.DTable.Get() })
   {
     if (t)
     {
@@ -296,14 +355,15 @@ void GIResources::Unbind()
 void GIResources::ReleaseGraphicsResources(vtkWindow* window)
 {
   Internals& d = *this->Impl;
-  for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get() })
+  for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get(),
+         d.CapVis.Get(), d.DTable.Get() })
   {
     if (t)
     {
       t->ReleaseGraphicsResources(window);
     }
   }
-  d.CapLog = d.OL = d.LightMatrix = d.Proxies = nullptr;
+  d.CapLog = d.OL = d.LightMatrix = d.Proxies = d.CapVis = d.DTable = nullptr;
   d.Order = 0;
   d.Window = nullptr;
 }

@@ -11,13 +11,13 @@
  * |---|---|
  * | pgiSHBasis | sh::EvaluateBasis (both from the same generator script) |
  * | pgiCapLog | sh::CapTables::CapLog (float path) |
- * | pgiRotateScaledZonal | sh::RotateScaledZonal |
- * | pgiOptimalLinear | sh::CapTables::OptimalLinear |
- * | pgiSHSquare | sh::TripleProduct::Square (generated from its Terms()) |
- * | pgiExpHybrid, pgiGuardRange | sh::Exp (HYB), sh::GuardRange |
- * | pgiReplaceBlocker | proxygi::ReplaceBlocker |
- * | pgiVisibility | proxygi::SoftShadows::Visibility |
- * | pgiShade, pgiShadeUnshadowed | proxygi::EnvironmentShading (product-matrix path) |
+ * | pgiCapVisibility | sh::CapTables::CapVisibility (float path) |
+ * | pgiAveragedIndirect, pgiAveragedRadiance | sh::IndirectTables::AveragedIndirect,
+ * AveragedRadiance | | pgiRotateScaledZonal | sh::RotateScaledZonal | | pgiOptimalLinear |
+ * sh::CapTables::OptimalLinear | | pgiSHSquare | sh::TripleProduct::Square (generated from its
+ * Terms()) | | pgiExpHybrid, pgiGuardRange | sh::Exp (HYB), sh::GuardRange | | pgiReplaceBlocker |
+ * proxygi::ReplaceBlocker | | pgiVisibility | proxygi::SoftShadows::Visibility | | pgiShade,
+ * pgiShadeUnshadowed | proxygi::EnvironmentShading (product-matrix path) |
  */
 #ifndef pgiGIShaders_h
 #define pgiGIShaders_h
@@ -29,6 +29,7 @@
 #include <vector>
 
 class vtkOpenGLRenderWindow;
+class vtkPolyData;
 class vtkShaderProgram;
 class vtkWindow;
 
@@ -42,6 +43,14 @@ constexpr int MinOrder = 2;
 constexpr int MaxOrder = 6;
 /// Infinite blocker planes the kernel takes.
 constexpr int MaxPlanes = 8;
+
+/**
+ * Proxies as the CPU filter reads them: x, y, z, r per sphere, Level 0 only
+ * when a "Level" array is present. False (and no spheres) on a missing
+ * "Radius" array or NaN/Inf/negative values, with the reason in `error`.
+ */
+PROXYGIRENDERING_EXPORT bool ReadProxies(
+  vtkPolyData* proxies, std::vector<float>& spheres, std::string& error);
 
 /// GLSL statements of TripleProduct::Square for one order (o = f * f).
 PROXYGIRENDERING_EXPORT std::string SquareSource(int order);
@@ -62,8 +71,9 @@ struct KernelSettings
 };
 
 /**
- * Tables, light and blockers on the GPU for one order: the cap log-visibility
- * and optimal-linear tables of sh::CapTables, the light's product matrix
+ * Tables, light and blockers on the GPU for one order: the cap log-visibility,
+ * cap visibility and optimal-linear tables of sh::CapTables, the averaged
+ * indirect D(theta) of sh::IndirectTables, the light's product matrix
  * (sh::TripleProduct::ProductMatrix, per channel), the light vector, the
  * scaled ZH of the diffuse transfer, the proxies as a float texture.
  */

@@ -152,44 +152,6 @@ void vtkPGIGIPolyDataMapper::ReleaseGraphicsResources(vtkWindow* window)
 
 namespace
 {
-// Proxies as the CPU filter reads them: leaves only, checked.
-bool ReadProxies(vtkPolyData* proxies, std::vector<float>& spheres, std::string& error)
-{
-  spheres.clear();
-  if (!proxies || proxies->GetNumberOfPoints() == 0)
-  {
-    return true;
-  }
-  vtkDataArray* radius = proxies->GetPointData()->GetArray("Radius");
-  if (!radius)
-  {
-    error = "the proxies need a \"Radius\" point array";
-    return false;
-  }
-  vtkDataArray* level = proxies->GetPointData()->GetArray("Level");
-  for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
-  {
-    double c[3];
-    proxies->GetPoint(i, c);
-    const double r = radius->GetTuple1(i);
-    if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]) || !std::isfinite(r) ||
-      r < 0.0)
-    {
-      std::ostringstream m;
-      m << "proxy " << i << " has a NaN, Inf or negative centre or radius";
-      error = m.str();
-      spheres.clear();
-      return false;
-    }
-    if (level && level->GetTuple1(i) != 0.0)
-    {
-      continue;
-    }
-    spheres.insert(spheres.end(), { float(c[0]), float(c[1]), float(c[2]), float(r) });
-  }
-  return true;
-}
-
 // One transform-feedback description per set of captured outputs, shared by
 // all mappers: the shader cache relinks a program whenever it is handed a
 // different vtkTransformFeedback object, and mappers of the same order share
@@ -280,7 +242,7 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
   if (proxiesTime != g.ProxiesTime || settingsChanged)
   {
     std::string error;
-    if (!ReadProxies(this->Proxies, g.Spheres, error))
+    if (!proxygi::gpu::ReadProxies(this->Proxies, g.Spheres, error))
     {
       vtkErrorMacro("Proxies ignored: " << error << ".");
     }

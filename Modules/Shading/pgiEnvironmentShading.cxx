@@ -1,5 +1,6 @@
 #include "pgiEnvironmentShading.h"
 
+#include "pgiEnvironmentMap.h"
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
 
@@ -122,6 +123,36 @@ void EnvironmentShading::ShadeUnshadowed(const float n[3], float rgb[3]) const
   for (int c = 0; c < 3; ++c)
   {
     rgb[c] = sh::Dot(n2, h, &this->Light[c * n2]);
+  }
+}
+
+void LightAbovePlanes(const EnvironmentMap& environment, int order, const float* planeNormals,
+  int planes, double* red, double* green, double* blue, double* planeVisibility)
+{
+  const int high = std::max(order, std::min(8, sh::MaxOrder));
+  const int n2 = sh::NumCoefficients(order), h2 = sh::NumCoefficients(high);
+  std::vector<double> light(3 * h2), v(h2, 0.0), step(h2), product(h2), zh(high);
+  environment.ProjectSH(high, &light[0], &light[h2], &light[2 * h2]);
+  // V = product of the steps (1 above each plane), at the high order.
+  v[0] = std::sqrt(4.0 * sh::Pi);
+  const sh::TripleProduct& tp = sh::TripleProduct::Get(high);
+  sh::CapVisibilityZonal(high, 0.5 * sh::Pi, zh.data());
+  for (int k = 0; k < planes; ++k)
+  {
+    const float* m = planeNormals + 3 * k;
+    sh::RotateZonal(high, zh.data(), -double(m[0]), -double(m[1]), -double(m[2]), step.data());
+    tp.Product(v.data(), step.data(), product.data());
+    v = product;
+  }
+  double* out[3] = { red, green, blue };
+  for (int c = 0; c < 3; ++c)
+  {
+    tp.Product(&light[c * h2], v.data(), product.data());
+    std::copy(product.begin(), product.begin() + n2, out[c]);
+  }
+  if (planeVisibility)
+  {
+    std::copy(v.begin(), v.begin() + n2, planeVisibility);
   }
 }
 

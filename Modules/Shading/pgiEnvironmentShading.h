@@ -53,6 +53,24 @@ private:
   std::vector<float> LHTable; // Height x Width x 3 x n^2 (Table path)
 };
 
+class EnvironmentMap;
+
+/**
+ * Infinite blocker planes carried by the light instead of the visibility:
+ * a receiver above a plane never sees below it, whatever its position, so
+ * its light is L times the planes' step functions. A half-space has no
+ * useful low-order log (its log is -infinity below the horizon), and SH exp
+ * of a clipped 90-degree cap log darkens the open hemisphere by ~10% at
+ * order 4; as part of the light the step costs nothing per receiver and is
+ * exact up to the truncation of the product (taken at order >= 8).
+ * planeNormals: 3 floats per plane (the side above is lit). Writes
+ * order^2 coefficients per channel, and the planes' visibility itself
+ * (order^2; its dot product with a visibility gives the combined coverage).
+ */
+PROXYGISHADING_EXPORT void LightAbovePlanes(const EnvironmentMap& environment, int order,
+  const float* planeNormals, int planes, double* red, double* green, double* blue,
+  double* planeVisibility = nullptr);
+
 } // namespace proxygi
 
 #endif

@@ -1,5 +1,7 @@
 #include "pgiIndirectLight.h"
 
+#include "pgiEnvironmentShading.h"
+
 #include "pgiSHBasis.h"
 #include "pgiSHLightTables.h"
 #include "pgiSHTables.h"
@@ -77,7 +79,7 @@ SecondaryLights::SecondaryLights(
 
 void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   const Blockers& blockers, const std::vector<SeenBlocker>& seen, float visibilityDC,
-  const float n[3], float rgb[3])
+  const float n[3], float rgb[3], const float* planeScale, bool planesOnly)
 {
   rgb[0] = rgb[1] = rgb[2] = 0.0f;
   if (seen.empty())
@@ -111,14 +113,14 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
       const float* pn = &blockers.PlaneNormal[3 * k];
       for (int c = 0; c < 3; ++c)
       {
-        const float r = blockers.PlaneAlbedo[3 * k + c] *
+        const float r = blockers.PlaneAlbedo[3 * k + c] * (planeScale ? planeScale[3 * k + c] : 1.0f) *
           sh::Reconstruct(order, &lights.Response[c * n2], pn[0], pn[1], pn[2]);
         sum[c] += r * capWeight;
       }
       continue;
     }
     const float* albedo = &blockers.Albedo[3 * static_cast<std::size_t>(b.Index)];
-    if (albedo[0] <= 0.0f && albedo[1] <= 0.0f && albedo[2] <= 0.0f)
+    if (planesOnly || (albedo[0] <= 0.0f && albedo[1] <= 0.0f && albedo[2] <= 0.0f))
     {
       continue;
     }
@@ -149,6 +151,42 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   {
     rgb[c] = std::max(0.0f, xi * sum[c]);
   }
+}
+
+bool PlaneShadowScale(const SoftShadows& shadows, const EnvironmentShading& shading,
+  const Blockers& blockers, int plane, const float p[3], const float n[3], float scale[3])
+{
+  scale[0] = scale[1] = scale[2] = 1.0f;
+  const float* o = &blockers.PlaneOrigin[3 * plane];
+  const float* m = &blockers.PlaneNormal[3 * plane];
+  const float height = (p[0] - o[0]) * m[0] + (p[1] - o[1]) * m[1] + (p[2] - o[2]) * m[2];
+  float d[3] = { n[0] - m[0], n[1] - m[1], n[2] - m[2] };
+  const float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(height > 0.0f) || !(len > 1e-3f))
+  {
+    return false;
+  }
+  const float down = -(d[0] * m[0] + d[1] * m[1] + d[2] * m[2]) / len; // cos to -m
+  if (!(down > 0.0f))
+  {
+    return false;
+  }
+  // Far along a grazing direction the plane point says little: at most 4 h.
+  const float t = height / std::max(down, 0.25f);
+  const float q[3] = { p[0] + t * d[0] / len, p[1] + t * d[1] / len, p[2] + t * d[2] / len };
+  float g[sh::MaxCoefficients], lit[3], open[3];
+  sh::Status status;
+  if (shadows.Visibility(q, m, blockers, g, status) == 0 || status != sh::Status::Ok)
+  {
+    return true;
+  }
+  shading.Shade(m, g, lit);
+  shading.ShadeUnshadowed(m, open);
+  for (int c = 0; c < 3; ++c)
+  {
+    scale[c] = open[c] > 0.0f ? std::min(1.0f, std::max(0.0f, lit[c] / open[c])) : 1.0f;
+  }
+  return true;
 }
 
 } // namespace proxygi

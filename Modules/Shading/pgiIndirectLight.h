@@ -26,6 +26,8 @@
 namespace proxygi
 {
 
+class EnvironmentShading;
+
 enum class IndirectOperator
 {
   PointSampled,
@@ -60,7 +62,25 @@ struct PROXYGISHADING_EXPORT SecondaryLights
  */
 PROXYGISHADING_EXPORT void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   const Blockers& blockers, const std::vector<SeenBlocker>& seen, float visibilityDC,
-  const float n[3], float rgb[3]);
+  const float n[3], float rgb[3], const float* planeScale = nullptr, bool planesOnly = false);
+
+/// (planeScale: per plane and channel, see PlaneShadowScale; planesOnly: the
+/// spheres count for the overlap normalisation but emit nothing, for when
+/// they are spherical lights of the shadowed model.)
+
+/**
+ * How much of a plane's light reaches the part of it a receiver at p with
+ * normal n mostly sees: the plane point q along normalize(n - m) (straight
+ * down for a receiver facing down, 45 degrees off for one facing sideways),
+ * shaded with the proxies' visibility at q over shaded without it, per
+ * channel (3 floats, in [0, 1]). So a ground darkened by an object's shadow
+ * reflects less onto the object's underside, at the cost of one more
+ * visibility per receiver. Returns false (scale 1) when the receiver does
+ * not see the plane.
+ */
+PROXYGISHADING_EXPORT bool PlaneShadowScale(const SoftShadows& shadows,
+  const EnvironmentShading& shading, const Blockers& blockers, int plane, const float p[3],
+  const float n[3], float scale[3]);
 
 } // namespace proxygi
 

@@ -153,7 +153,10 @@ int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& 
     {
       continue;
     }
-    accumulate(static_cast<float>(sh::CapTables::MaxAngle), -pn[0], -pn[1], -pn[2], nullptr);
+    if (this->Settings.PlanesInLogSpace)
+    {
+      accumulate(static_cast<float>(sh::CapTables::MaxAngle), -pn[0], -pn[1], -pn[2], nullptr);
+    }
     if (seen)
     {
       seen->push_back({ -1 - static_cast<int>(k), static_cast<float>(sh::CapTables::MaxAngle),
@@ -196,6 +199,33 @@ bool ProxyHierarchy::Finish()
       this->Children[parent].push_back(i);
     }
   }
+  // A parent reflects like its children on average (bottom-up, by level).
+  if (this->Albedo.size() == 3 * static_cast<std::size_t>(count))
+  {
+    const int top = count ? *std::max_element(this->Level.begin(), this->Level.end()) : 0;
+    for (int level = 1; level <= top; ++level)
+    {
+      for (int i = 0; i < count; ++i)
+      {
+        if (this->Level[i] != level || this->Children[i].empty())
+        {
+          continue;
+        }
+        float sum[3] = { 0, 0, 0 };
+        for (int child : this->Children[i])
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            sum[c] += this->Albedo[3 * child + c];
+          }
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          this->Albedo[3 * i + c] = sum[c] / static_cast<float>(this->Children[i].size());
+        }
+      }
+    }
+  }
   return true;
 }
 
@@ -225,9 +255,13 @@ bool SphereLog(const sh::CapTables& tables, const float p[3], const float n[3], 
 } // namespace
 
 Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, const float p[3],
-  const float n[3], float maxAngle, int order, bool rules)
+  const float n[3], float maxAngle, int order, bool rules, std::vector<int>* nodes)
 {
   Blockers cut;
+  if (nodes)
+  {
+    nodes->clear();
+  }
   const sh::CapTables& tables = sh::CapTables::Get(order);
   const int n2 = sh::NumCoefficients(order);
   const float sinMax = std::sin(maxAngle);
@@ -247,6 +281,10 @@ Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, cons
       continue;
     }
     cut.AddSphere(h.X[i], h.Y[i], h.Z[i], h.R[i], h.Albedo.empty() ? nullptr : &h.Albedo[3 * i]);
+    if (nodes)
+    {
+      nodes->push_back(i);
+    }
     std::vector<float> ratio(order, 1.0f);
     float c[3] = { h.X[i], h.Y[i], h.Z[i] };
     if (!leaf && SphereLog(tables, p, n, c, h.R[i], rules, zh, dir))

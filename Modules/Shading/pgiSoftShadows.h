@@ -60,6 +60,9 @@ struct PROXYGISHADING_EXPORT SoftShadowSettings
   /// Blockers subtending less than this (radians) are skipped.
   float MinAngle = 0.002f;
   bool SelfShadowRules = true;
+  /// Planes as 90-degree caps in log space (true), or only reported as seen
+  /// (false: the light carries them, see LightAbovePlanes).
+  bool PlanesInLogSpace = true;
 };
 
 /**
@@ -83,10 +86,12 @@ struct PROXYGISHADING_EXPORT ProxyHierarchy
  * bounding sphere (centre pR, radius rR), each with the per-band ratio vector
  * that best scales its bounding log-visibility to the summed log-visibility
  * of its leaves, both seen from the cluster's central receiver (p, n).
- * Leaves in the cut keep ratio 1.
+ * Leaves in the cut keep ratio 1. `nodes`, if given, receives the hierarchy
+ * index of each sphere of the cut.
  */
 PROXYGISHADING_EXPORT Blockers CutHierarchy(const ProxyHierarchy& hierarchy, const float pR[3],
-  float rR, const float p[3], const float n[3], float maxAngle, int order, bool selfShadowRules);
+  float rR, const float p[3], const float n[3], float maxAngle, int order, bool selfShadowRules,
+  std::vector<int>* nodes = nullptr);
 
 /**
  * Applies the replacement rules to one sphere for receiver p, normal n (unit).

@@ -5,8 +5,10 @@
 #include "pgiIndirectLight.h"
 #include "pgiMaterial.h"
 #include "pgiSHLightTables.h"
+#include "pgiSHSphericalLight.h"
 #include "pgiSHZonal.h"
 #include "pgiSoftShadows.h"
+#include "pgiSphericalLights.h"
 #include "vtkPGILighting.h"
 
 #include "vtkDataArray.h"
@@ -25,10 +27,267 @@
 #include "vtkStringArray.h"
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 vtkStandardNewMacro(vtkPGIGlobalIllumination);
+
+namespace
+{
+/**
+ * The spherical lights of the shadowed bounce and their first pass. Returns
+ * "" when they are ready, else why the bounce is skipped; `error` is set for
+ * bad input. `summary` says what ran.
+ */
+std::string PrepareSphericalLights(vtkPolyData* proxies, const std::vector<vtkIdType>& leafIds,
+  vtkDataArray* levels, int order, const char* albedoArray, const double defaultAlbedo[3],
+  const proxygi::EnvironmentShading& shading, bool dark, const proxygi::Blockers& blockers,
+  const proxygi::LocalEmitters* emitters, const proxygi::ShadowedIndirect& kernel,
+  proxygi::SphericalLights& lights, std::string& summary, std::string& error)
+{
+  if (leafIds.empty())
+  {
+    return "no proxies to act as spherical lights";
+  }
+  if (dark && !emitters)
+  {
+    return "the environment is black and there are no local lights";
+  }
+  const int n2 = order * order;
+  vtkPointData* pd = proxies->GetPointData();
+  vtkDataArray* radius = pd->GetArray("Radius");
+  vtkDataArray* objectIds = pd->GetArray("ObjectId");
+  vtkDataArray* offsets = pd->GetArray("SampleOffset");
+  vtkDataArray* normals = pd->GetArray("SampleNormal");
+  vtkDataArray* albedoSH = pd->GetArray("AlbedoSH");
+  lights.Order = order;
+  proxygi::SphericalLightSamples samples;
+  std::vector<double> directions;
+  const bool fromMesh = offsets && normals &&
+    offsets->GetNumberOfComponents() == normals->GetNumberOfComponents() &&
+    offsets->GetNumberOfComponents() % 3 == 0;
+  if (fromMesh)
+  {
+    const int m = offsets->GetNumberOfComponents() / 3;
+    vtkDataArray* given = proxies->GetFieldData()->GetArray("SampleDirections");
+    if (given && given->GetNumberOfTuples() == m && given->GetNumberOfComponents() == 3)
+    {
+      directions.resize(3 * m);
+      for (int j = 0; j < m; ++j)
+      {
+        given->GetTuple(j, &directions[3 * j]);
+      }
+    }
+    else
+    {
+      directions = proxygi::sh::GeodesicDirections(3);
+      if (static_cast<int>(directions.size()) != 3 * m)
+      {
+        error = "SampleOffset has " + std::to_string(m) +
+          " samples per proxy but no SampleDirections field array matches them";
+        return "bad samples";
+      }
+    }
+  }
+  else
+  {
+    directions = proxygi::sh::GeodesicDirections(3);
+  }
+  const int m = static_cast<int>(directions.size() / 3);
+  samples.Directions = m;
+  const std::size_t count = leafIds.size();
+  samples.Position.assign(count * m * 3, 0.0f);
+  samples.Normal.assign(count * m * 3, 0.0f);
+  samples.AlbedoSH.assign(count * 3 * n2, 0.0f);
+  std::vector<double> row;
+  long found = 0;
+  bool anyAlbedo = false;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const vtkIdType id = leafIds[i];
+    double c[3];
+    proxies->GetPoint(id, c);
+    const double r = radius->GetTuple1(id);
+    lights.Add(float(c[0]), float(c[1]), float(c[2]), float(r),
+      objectIds ? static_cast<int>(objectIds->GetTuple1(id)) : 0);
+    if (levels)
+    {
+      lights.Level.push_back(static_cast<int>(levels->GetTuple1(id)));
+    }
+    for (int j = 0; j < m; ++j)
+    {
+      double o[3], nn[3];
+      if (fromMesh)
+      {
+        o[0] = offsets->GetComponent(id, 3 * j);
+        o[1] = offsets->GetComponent(id, 3 * j + 1);
+        o[2] = offsets->GetComponent(id, 3 * j + 2);
+        nn[0] = normals->GetComponent(id, 3 * j);
+        nn[1] = normals->GetComponent(id, 3 * j + 1);
+        nn[2] = normals->GetComponent(id, 3 * j + 2);
+      }
+      else
+      {
+        // The sphere itself is the surface: the sample in w_j is c + r w_j.
+        for (int k = 0; k < 3; ++k)
+        {
+          o[k] = nn[k] = directions[3 * j + k];
+        }
+      }
+      const double len = vtkMath::Norm(nn);
+      if (!(len > 0.0) || !std::isfinite(len) || !std::isfinite(vtkMath::Norm(o)))
+      {
+        continue;
+      }
+      float* pos = &samples.Position[(i * m + j) * 3];
+      float* nor = &samples.Normal[(i * m + j) * 3];
+      for (int k = 0; k < 3; ++k)
+      {
+        pos[k] = static_cast<float>(c[k] + r * o[k]);
+        nor[k] = static_cast<float>(nn[k] / len);
+      }
+      ++found;
+    }
+    float* albedo = &samples.AlbedoSH[i * 3 * n2];
+    const int k2 = albedoSH ? albedoSH->GetNumberOfComponents() / 3 : 0;
+    const int k = static_cast<int>(std::lround(std::sqrt(double(k2))));
+    if (albedoSH && k > 0 && k * k == k2 && 3 * k2 == albedoSH->GetNumberOfComponents())
+    {
+      // Per-vertex colour, sampled by vtkPGISphereLightSampler: truncate or pad.
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        for (int t = 0; t < std::min(k2, n2); ++t)
+        {
+          const double v = albedoSH->GetComponent(id, ch * k2 + t);
+          albedo[ch * n2 + t] = std::isfinite(v) ? static_cast<float>(v) : 0.0f;
+        }
+      }
+    }
+    else
+    {
+      double a[3];
+      proxygi::AlbedoOf(proxies, albedoArray, id, defaultAlbedo, a);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        albedo[ch * n2] = static_cast<float>(a[ch] * proxygi::sh::SqrtFourPi);
+      }
+    }
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      anyAlbedo = anyAlbedo || albedo[ch * n2] > 0.0f;
+    }
+  }
+  if (!fromMesh)
+  {
+    // Rule 2 on the spheres: a point inside another sphere of the object is hidden.
+    lights.Finish();
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      for (int j = 0; j < m; ++j)
+      {
+        float* pos = &samples.Position[(i * m + j) * 3];
+        for (std::size_t q = 0; q < count; ++q)
+        {
+          if (!lights.Intersects[i * count + q])
+          {
+            continue;
+          }
+          const float dx = pos[0] - lights.X[q], dy = pos[1] - lights.Y[q],
+                      dz = pos[2] - lights.Z[q];
+          if (dx * dx + dy * dy + dz * dz < lights.R[q] * lights.R[q])
+          {
+            std::fill(pos, pos + 3, 0.0f);
+            std::fill(&samples.Normal[(i * m + j) * 3], &samples.Normal[(i * m + j) * 3] + 3, 0.0f);
+            --found;
+            break;
+          }
+        }
+      }
+    }
+  }
+  if (!anyAlbedo)
+  {
+    return "every spherical light has albedo 0";
+  }
+  if (found <= 0)
+  {
+    return "no surface samples";
+  }
+  lights.Finish();
+  const std::vector<double> voronoi = proxygi::sh::VoronoiBasisSums(order, directions);
+  samples.Voronoi.assign(voronoi.begin(), voronoi.end());
+  const auto start = std::chrono::steady_clock::now();
+  const long failed = kernel.UpdateRadiance(lights, samples, blockers, shading, emitters);
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ostringstream line;
+  line << count << " spherical lights, " << found << " surface samples of " << count * m << " ("
+       << (fromMesh ? "SampleOffset/SampleNormal arrays" : "on the spheres themselves") << "), "
+       << (albedoSH ? "AlbedoSH" : "per-object albedo") << ", first pass " << seconds << " s"
+       << (emitters ? " (with local lights)" : "");
+  if (failed > 0)
+  {
+    line << ", " << failed << " samples left unlit (non-finite SH)";
+  }
+  summary = line.str();
+  return "";
+}
+
+/**
+ * The spherical lights of one cluster's cut (hierarchy indices `cut` into
+ * `nodes`), each parent with the reflection ratio (Guerrero 2008, eq. 25)
+ * that scales its share at the cluster's central receiver (p, n) to the sum
+ * of its leaves' shares there.
+ */
+void CutSphericalLights(const proxygi::SphericalLights& nodes,
+  const proxygi::SphericalLights& leaves, const std::map<std::size_t, int>& leafOfNode,
+  const proxygi::ProxyHierarchy& hierarchy, const std::vector<int>& cut,
+  const proxygi::Blockers& planes, const proxygi::ShadowedIndirect& kernel, const float p[3],
+  const float n[3], proxygi::SphericalLights& out)
+{
+  const std::size_t n2 = static_cast<std::size_t>(nodes.Order * nodes.Order);
+  out = proxygi::SphericalLights();
+  out.Order = nodes.Order;
+  for (int node : cut)
+  {
+    out.Add(nodes.X[node], nodes.Y[node], nodes.Z[node], nodes.R[node], nodes.Object[node]);
+    out.Radiance.insert(out.Radiance.end(), nodes.Radiance.begin() + node * 3 * n2,
+      nodes.Radiance.begin() + (node + 1) * 3 * n2);
+  }
+  out.Finish();
+  proxygi::SphericalLightScratch scratch;
+  std::vector<float> leafShare(leaves.Count()), cutShare(out.Count());
+  float rgb[3];
+  kernel.ExitRadiance(leaves, true, nullptr, &planes, p, n, rgb, scratch, leafShare.data());
+  kernel.ExitRadiance(out, true, nullptr, &planes, p, n, rgb, scratch, cutShare.data());
+  out.ReflectionRatio.assign(out.Count(), 1.0f);
+  for (std::size_t k = 0; k < cut.size(); ++k)
+  {
+    if (hierarchy.Children[cut[k]].empty())
+    {
+      continue; // a leaf: ratio 1
+    }
+    float sum = 0.0f;
+    std::vector<int> below(hierarchy.Children[cut[k]]);
+    while (!below.empty())
+    {
+      const int j = below.back();
+      below.pop_back();
+      if (!hierarchy.Children[j].empty())
+      {
+        below.insert(below.end(), hierarchy.Children[j].begin(), hierarchy.Children[j].end());
+        continue;
+      }
+      const auto leaf = leafOfNode.find(static_cast<std::size_t>(j));
+      sum += leaf != leafOfNode.end() ? leafShare[leaf->second] : 0.0f;
+    }
+    // Nothing to scale where the parent is hidden or unlit at the centre: 1.
+    out.ReflectionRatio[k] = cutShare[k] > 1e-12f ? std::min(4.0f, sum / cutShare[k]) : 1.0f;
+  }
+}
+} // namespace
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Lighting, vtkPGILighting);
 
 vtkPGIGlobalIllumination::vtkPGIGlobalIllumination()
@@ -88,6 +347,16 @@ void vtkPGIGlobalIllumination::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Shadows: " << this->Shadows << "\n";
   os << indent << "Indirect: " << this->Indirect << " (operator " << this->IndirectOperator
      << ")\n";
+  os << indent << "IndirectMode: "
+     << (this->IndirectMode == INDIRECT_MODE_UNSHADOWED    ? "Unshadowed"
+            : this->IndirectMode == INDIRECT_MODE_SHADOWED ? "Shadowed"
+                                                           : "Off")
+     << "\n";
+  os << indent << "SphericalLightBlocking: "
+     << (this->SphericalLightBlocking == BLOCKING_PER_OBJECT ? "PerObject" : "PerSphere") << "\n";
+  os << indent << "PlaneBounceShadows: " << this->PlaneBounceShadows << "\n";
+  os << indent << "PlaneBlocking: "
+     << (this->PlaneBlocking == PLANES_IN_LIGHT ? "InLight" : "InLogSpace") << "\n";
   os << indent << "LocalLights: " << this->LocalLights << "\n";
   os << indent << "HierarchyAngle: " << this->HierarchyAngle << "\n";
   os << indent << "ReceiversPerCluster: " << this->ReceiversPerCluster << "\n";
@@ -135,6 +404,7 @@ int vtkPGIGlobalIllumination::RequestData(
   proxygi::Blockers blockers;
   proxygi::ProxyHierarchy hierarchy;
   bool useHierarchy = false;
+  std::vector<vtkIdType> leafIds; // proxies that are blockers (and spherical lights)
   vtkPolyData* proxies =
     this->GetNumberOfInputConnections(1) ? vtkPolyData::GetData(in[1]) : nullptr;
   if (proxies && proxies->GetNumberOfPoints() > 0)
@@ -179,6 +449,7 @@ int vtkPGIGlobalIllumination::RequestData(
         continue;
       }
       blockers.AddSphere(float(c[0]), float(c[1]), float(c[2]), float(r), albedoF);
+      leafIds.push_back(i);
     }
   }
   if (useHierarchy && !hierarchy.Finish())
@@ -210,12 +481,25 @@ int vtkPGIGlobalIllumination::RequestData(
   const int order = this->Order, n2 = order * order;
   std::vector<double> lr(n2), lg(n2), lb(n2);
   environment->ProjectSH(order, lr.data(), lg.data(), lb.data());
-  const proxygi::EnvironmentShading shading(order, lr.data(), lg.data(), lb.data(),
-    this->ShadingPath == SHADING_TABLE ? proxygi::EnvironmentShading::Path::Table
-                                       : proxygi::EnvironmentShading::Path::ProductMatrix);
+  const auto shadingPath = this->ShadingPath == SHADING_TABLE
+    ? proxygi::EnvironmentShading::Path::Table
+    : proxygi::EnvironmentShading::Path::ProductMatrix;
+  // The open light serves receivers without shadows or below a plane; with
+  // planes in the light, those above every plane get L times their steps.
+  const proxygi::EnvironmentShading openShading(order, lr.data(), lg.data(), lb.data(), shadingPath);
+  const bool planesInLight = this->PlaneBlocking == PLANES_IN_LIGHT && blockers.Planes() > 0;
+  std::vector<double> planeVisibility(n2, 0.0);
+  if (planesInLight)
+  {
+    proxygi::LightAbovePlanes(*environment, order, blockers.PlaneNormal.data(),
+      static_cast<int>(blockers.Planes()), lr.data(), lg.data(), lb.data(),
+      planeVisibility.data());
+  }
+  const proxygi::EnvironmentShading shading(order, lr.data(), lg.data(), lb.data(), shadingPath);
 
   // The plan: what this scene needs.
-  const proxygi::SecondaryLights secondary(order, lr.data(), lg.data(), lb.data(), &blockers);
+  const proxygi::SecondaryLights secondary(
+    order, lr.data(), lg.data(), lb.data(), planesInLight ? nullptr : &blockers);
   const bool anyBlockers = blockers.Spheres() > 0 || blockers.Planes() > 0;
   const bool runShadows = this->Shadows && anyBlockers;
   bool anyAlbedo = false;
@@ -228,7 +512,16 @@ int vtkPGIGlobalIllumination::RequestData(
     anyAlbedo = anyAlbedo || a > 0.0f;
   }
   const bool dark = lr[0] <= 0.0 && lg[0] <= 0.0 && lb[0] <= 0.0;
-  const bool runIndirect = this->Indirect && anyBlockers && anyAlbedo && !dark;
+  const int indirectMode = this->Indirect ? this->IndirectMode : INDIRECT_MODE_OFF;
+  const bool runIndirect =
+    indirectMode == INDIRECT_MODE_UNSHADOWED && anyBlockers && anyAlbedo && !dark;
+  // The shadowed model's lights are the spheres; planes still reflect.
+  bool planesReflect = false;
+  for (float a : blockers.PlaneAlbedo)
+  {
+    planesReflect = planesReflect || a > 0.0f;
+  }
+  const bool runPlaneBounce = indirectMode == INDIRECT_MODE_SHADOWED && planesReflect && !dark;
   const bool hasLights =
     !lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty();
   const bool runLocal = this->LocalLights && hasLights;
@@ -246,9 +539,13 @@ int vtkPGIGlobalIllumination::RequestData(
   {
     this->Plan.push_back("shadows: skipped (no proxies and no blocker planes)");
   }
-  if (!this->Indirect)
+  if (indirectMode == INDIRECT_MODE_OFF)
   {
     this->Plan.push_back("indirect light: off (switched off)");
+  }
+  else if (indirectMode == INDIRECT_MODE_SHADOWED)
+  {
+    // Planned below, once the spherical lights are built.
   }
   else if (!runIndirect)
   {
@@ -279,7 +576,8 @@ int vtkPGIGlobalIllumination::RequestData(
     }
     this->Plan.push_back(line.str());
   }
-  const bool needVisibility = anyBlockers && (runShadows || runIndirect || runLocal);
+  const bool needVisibility =
+    anyBlockers && (runShadows || runIndirect || runPlaneBounce || runLocal);
   // Local lights as spheres: point lights are tiny spheres of equal power.
   struct LocalSphere
   {
@@ -307,6 +605,79 @@ int vtkPGIGlobalIllumination::RequestData(
     proxygi::sh::IndirectTables::Get(order); // build before the parallel loops
   }
 
+  // Shadowed one bounce (Guerrero 2008): the leaf proxies as spherical lights.
+  proxygi::SoftShadowSettings settings;
+  settings.Order = order;
+  settings.AccumulationOrder = this->AccumulationOrder;
+  settings.Exp.Method = static_cast<proxygi::sh::ExpMethod>(this->ExpMethod);
+  settings.Exp.Degree = this->ExpDegree;
+  settings.WindowH = this->WindowSize;
+  settings.MinAngle = static_cast<float>(this->MinBlockerAngle);
+  settings.SelfShadowRules = this->SelfShadowRules;
+  settings.PlanesInLogSpace = !planesInLight;
+  const proxygi::ShadowedIndirect shadowedIndirect(settings,
+    this->SphericalLightBlocking == BLOCKING_PER_OBJECT
+      ? proxygi::SphericalLightBlocking::PerObject
+      : proxygi::SphericalLightBlocking::PerSphere);
+  proxygi::SphericalLights spheres, leafLights;
+  std::map<std::size_t, int> leafOfNode; // hierarchy node -> index in leafLights
+  bool runShadowed = false;
+  if (indirectMode == INDIRECT_MODE_SHADOWED)
+  {
+    proxygi::LocalEmitters emitters;
+    for (const LocalSphere& l : locals)
+    {
+      emitters.Add(l.Center, l.Radius, l.Radiance, l.Point);
+    }
+    std::string summary, bad;
+    // With a hierarchy every node is a spherical light (parents for the cuts).
+    std::vector<vtkIdType> allIds;
+    if (useHierarchy)
+    {
+      for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
+      {
+        allIds.push_back(i);
+      }
+    }
+    const std::string why = PrepareSphericalLights(proxies, useHierarchy ? allIds : leafIds,
+      useHierarchy ? proxies->GetPointData()->GetArray("Level") : nullptr, order,
+      this->AlbedoArrayName, this->DefaultAlbedo, shading, dark, blockers,
+      emitters.Count() ? &emitters : nullptr, shadowedIndirect, spheres, summary, bad);
+    if (!bad.empty())
+    {
+      vtkErrorMacro(<< bad);
+      return 0;
+    }
+    runShadowed = why.empty();
+    this->Plan.push_back(runShadowed ? "indirect light (shadowed): " + summary
+                                     : "indirect light (shadowed): skipped (" + why + ")");
+    if (runPlaneBounce)
+    {
+      this->Plan.push_back("indirect light (shadowed): the blocker planes reflect as uniform "
+                           "lights, dimmed where the proxies shadow them");
+    }
+    if (runShadowed && useHierarchy)
+    {
+      // The leaves alone: what receivers use without a cut, and the ratios' reference.
+      for (std::size_t i = 0; i < spheres.Count(); ++i)
+      {
+        if (spheres.Level[i] != 0)
+        {
+          continue;
+        }
+        leafOfNode[i] = static_cast<int>(leafLights.Count());
+        leafLights.Add(spheres.X[i], spheres.Y[i], spheres.Z[i], spheres.R[i], spheres.Object[i]);
+        const std::size_t n2s = static_cast<std::size_t>(3 * n2);
+        leafLights.Radiance.insert(leafLights.Radiance.end(), spheres.Radiance.begin() + i * n2s,
+          spheres.Radiance.begin() + (i + 1) * n2s);
+      }
+      leafLights.Order = order;
+      leafLights.Finish();
+    }
+  }
+  const proxygi::SphericalLights& shadowedLeaves = useHierarchy ? leafLights : spheres;
+  std::vector<proxygi::SphericalLights> clusterLights;
+
   vtkSmartPointer<vtkDataArray> normals = receivers->GetPointData()->GetNormals();
   if (!normals)
   {
@@ -323,23 +694,35 @@ int vtkPGIGlobalIllumination::RequestData(
     normals = computer->GetOutput()->GetPointData()->GetNormals();
   }
 
-  proxygi::SoftShadowSettings settings;
-  settings.Order = order;
-  settings.AccumulationOrder = this->AccumulationOrder;
-  settings.Exp.Method = static_cast<proxygi::sh::ExpMethod>(this->ExpMethod);
-  settings.Exp.Degree = this->ExpDegree;
-  settings.WindowH = this->WindowSize;
-  settings.MinAngle = static_cast<float>(this->MinBlockerAngle);
-  settings.SelfShadowRules = this->SelfShadowRules;
   const proxygi::SoftShadows shadows(settings);
+  // Receivers on or below a plane keep the planes in log space (they see
+  // under the ones they are below, and skip those).
+  proxygi::SoftShadowSettings logSettings = settings;
+  logSettings.PlanesInLogSpace = true;
+  const proxygi::SoftShadows shadowsLog(logSettings);
+  auto aboveEveryPlane = [&](const float p[3])
+  {
+    for (std::size_t k = 0; k < blockers.Planes(); ++k)
+    {
+      const float* o = &blockers.PlaneOrigin[3 * k];
+      const float* m = &blockers.PlaneNormal[3 * k];
+      if (!((p[0] - o[0]) * m[0] + (p[1] - o[1]) * m[1] + (p[2] - o[2]) * m[2] > 0.0f))
+      {
+        return false;
+      }
+    }
+    return true;
+  };
 
-  vtkNew<vtkFloatArray> direct, indirect, local, total, visibility;
+  vtkNew<vtkFloatArray> direct, indirect, indirectShadowed, local, total, visibility;
   direct->SetName("DirectShadowed");
   indirect->SetName("IndirectProxy");
+  indirectShadowed->SetName("IndirectShadowed");
   local->SetName("LocalLights");
   total->SetName("Radiance");
   visibility->SetName("Visibility");
-  for (vtkFloatArray* a : { direct.Get(), indirect.Get(), local.Get(), total.Get() })
+  for (vtkFloatArray* a :
+    { direct.Get(), indirect.Get(), indirectShadowed.Get(), local.Get(), total.Get() })
   {
     a->SetNumberOfComponents(3);
     a->SetNumberOfTuples(n);
@@ -436,17 +819,26 @@ int vtkPGIGlobalIllumination::RequestData(
         float(centres[3 * k + 2]) };
       const float pf[3] = { float(pc[0]), float(pc[1]), float(pc[2]) };
       const float nf[3] = { float(nc[0]), float(nc[1]), float(nc[2]) };
-      clusterBlockers[k] = proxygi::CutHierarchy(
-        hierarchy, pR, float(radius[k]), pf, nf, maxAngle, order, this->SelfShadowRules);
+      std::vector<int> nodes;
+      clusterBlockers[k] = proxygi::CutHierarchy(hierarchy, pR, float(radius[k]), pf, nf, maxAngle,
+        order, this->SelfShadowRules, runShadowed ? &nodes : nullptr);
+      if (runShadowed)
+      {
+        clusterLights.resize(clusters);
+        CutSphericalLights(spheres, leafLights, leafOfNode, hierarchy, nodes, blockers,
+          shadowedIndirect, pf, nf, clusterLights[k]);
+      }
       clusterBlockers[k].PlaneOrigin = blockers.PlaneOrigin;
       clusterBlockers[k].PlaneNormal = blockers.PlaneNormal;
+      clusterBlockers[k].PlaneAlbedo = blockers.PlaneAlbedo;
       cutTotal += clusterBlockers[k].Spheres();
       ++used;
     }
     std::ostringstream line;
     line << "hierarchy: " << used << " receiver clusters, cuts of "
          << (used ? static_cast<double>(cutTotal) / used : 0.0) << " spheres on average (of "
-         << blockers.Spheres() << " leaves) at " << this->HierarchyAngle << " degrees";
+         << blockers.Spheres() << " leaves) at " << this->HierarchyAngle << " degrees"
+         << (runShadowed ? "; spherical lights cut alike, with reflection ratios" : "");
     this->Plan.push_back(line.str());
   }
   else if (this->HierarchyAngle > 0.0)
@@ -454,7 +846,8 @@ int vtkPGIGlobalIllumination::RequestData(
     this->Plan.push_back("hierarchy: not used (the proxies have no Level/Parent arrays)");
   }
 
-  std::atomic<vtkIdType> shadowed(0), failures(0);
+  std::atomic<vtkIdType> shadowed(0), failures(0), shadowedFailures(0);
+  std::atomic<long long> secondPassNs(0);
   const vtkIdType blocks = std::min<vtkIdType>(50, n);
   for (vtkIdType b = 0; b < blocks && !this->GetAbortExecute(); ++b)
   {
@@ -464,7 +857,9 @@ int vtkPGIGlobalIllumination::RequestData(
         float g[proxygi::sh::MaxCoefficients], unshadowed[proxygi::sh::MaxCoefficients];
         proxygi::sh::SetConstant(order, 1.0f, unshadowed);
         std::vector<proxygi::SeenBlocker> seen;
-        vtkIdType localShadowed = 0, localFailures = 0;
+        proxygi::SphericalLightScratch scratch;
+        vtkIdType localShadowed = 0, localFailures = 0, localShadowedFailures = 0;
+        long long localSecondPassNs = 0;
         for (vtkIdType i = first; i < last; ++i)
         {
           double pd[3], nd[3], albedo[3];
@@ -477,14 +872,18 @@ int vtkPGIGlobalIllumination::RequestData(
           }
           const float p[3] = { float(pd[0]), float(pd[1]), float(pd[2]) };
           const float nf[3] = { float(nd[0]), float(nd[1]), float(nd[2]) };
-          float rgb[3], bounce[3] = { 0, 0, 0 }, lit[3] = { 0, 0, 0 };
+          float rgb[3], bounce[3] = { 0, 0, 0 }, lit[3] = { 0, 0, 0 },
+                        bounceShadowed[3] = { 0, 0, 0 };
           const proxygi::Blockers& mine =
             clusterOf.empty() ? blockers : clusterBlockers[clusterOf[i]];
+          const bool lightCarriesPlanes = planesInLight && aboveEveryPlane(p);
           seen.clear();
           if (needVisibility)
           {
             proxygi::sh::Status status;
-            if (shadows.Visibility(p, nf, mine, g, status, runIndirect ? &seen : nullptr) > 0)
+            const proxygi::SoftShadows& kernel = lightCarriesPlanes ? shadows : shadowsLog;
+            if (kernel.Visibility(
+                  p, nf, mine, g, status, runIndirect || runPlaneBounce ? &seen : nullptr) > 0)
             {
               ++localShadowed;
             }
@@ -501,17 +900,57 @@ int vtkPGIGlobalIllumination::RequestData(
           }
           if (runShadows)
           {
-            shading.Shade(nf, g, rgb);
+            (lightCarriesPlanes ? shading : openShading).Shade(nf, g, rgb);
           }
           else
           {
-            shading.ShadeUnshadowed(nf, rgb);
+            openShading.ShadeUnshadowed(nf, rgb);
           }
-          if (runIndirect)
+          float planeBounce[3] = { 0, 0, 0 };
+          if (runIndirect || runPlaneBounce)
           {
+            // xi needs the coverage of everything seen, planes included.
+            float dc = g[0];
+            if (lightCarriesPlanes)
+            {
+              double sum = 0.0;
+              for (int k = 0; k < n2; ++k)
+              {
+                sum += g[k] * planeVisibility[k];
+              }
+              dc = static_cast<float>(sum / proxygi::sh::SqrtFourPi);
+            }
+            // Planes reflect less where the proxies shadow them.
+            float planeScale[3 * 8];
+            const bool scalePlanes =
+              this->PlaneBounceShadows && mine.Planes() > 0 && mine.Planes() <= 8;
+            for (std::size_t k = 0; scalePlanes && k < mine.Planes(); ++k)
+            {
+              proxygi::PlaneShadowScale(
+                shadows, openShading, mine, static_cast<int>(k), p, nf, &planeScale[3 * k]);
+            }
             proxygi::IndirectExitRadiance(
               static_cast<proxygi::IndirectOperator>(this->IndirectOperator), secondary, mine, seen,
-              g[0], nf, bounce);
+              dc, nf, runIndirect ? bounce : planeBounce, scalePlanes ? planeScale : nullptr,
+              !runIndirect);
+          }
+          const proxygi::SphericalLights& myLights =
+            clusterLights.empty() ? shadowedLeaves : clusterLights[clusterOf[i]];
+          if (runShadowed)
+          {
+            const auto start = std::chrono::steady_clock::now();
+            if (!shadowedIndirect.ExitRadiance(
+                  myLights, true, nullptr, &blockers, p, nf, bounceShadowed, scratch))
+            {
+              ++localShadowedFailures;
+            }
+            localSecondPassNs += std::chrono::duration_cast<std::chrono::nanoseconds>(
+              std::chrono::steady_clock::now() - start)
+                                   .count();
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            bounceShadowed[c] += planeBounce[c];
           }
           for (const LocalSphere& l : locals)
           {
@@ -547,19 +986,39 @@ int vtkPGIGlobalIllumination::RequestData(
           {
             rgb[k] = static_cast<float>(rgb[k] * albedo[k]);
             bounce[k] = static_cast<float>(bounce[k] * albedo[k]);
+            bounceShadowed[k] = static_cast<float>(bounceShadowed[k] * albedo[k]);
             lit[k] = static_cast<float>(lit[k] * albedo[k]);
-            sum[k] = rgb[k] + bounce[k] + lit[k];
+            sum[k] = rgb[k] + bounce[k] + bounceShadowed[k] + lit[k]; // one of the two is 0
           }
           direct->SetTypedTuple(i, rgb);
           indirect->SetTypedTuple(i, bounce);
+          indirectShadowed->SetTypedTuple(i, bounceShadowed);
           local->SetTypedTuple(i, lit);
           total->SetTypedTuple(i, sum);
           visibility->SetTypedTuple(i, g);
         }
         shadowed += localShadowed;
         failures += localFailures;
+        shadowedFailures += localShadowedFailures;
+        secondPassNs += localSecondPassNs;
       });
     this->UpdateProgress(static_cast<double>(b + 1) / blocks);
+  }
+  if (runShadowed)
+  {
+    const double seconds = 1e-9 * static_cast<double>(secondPassNs.load());
+    std::ostringstream line;
+    line << "indirect light (shadowed): second pass over " << n << " receivers, "
+         << (this->SphericalLightBlocking == BLOCKING_PER_OBJECT ? "per-object" : "per-sphere")
+         << " blocking, " << seconds << " s summed over threads ("
+         << 1e6 * seconds / static_cast<double>(n) << " us per receiver)";
+    this->Plan.push_back(line.str());
+  }
+  if (shadowedFailures > 0)
+  {
+    vtkWarningMacro(<< shadowedFailures
+                    << " receivers met non-finite SH values in the shadowed indirect light; "
+                       "those spherical lights were left out.");
   }
   if (failures > 0)
   {
@@ -570,7 +1029,8 @@ int vtkPGIGlobalIllumination::RequestData(
   {
     std::ostringstream line;
     line << (runShadows ? "shadows: " : "visibility (for indirect/local lights): ")
-         << blockers.Spheres() << " proxy spheres, " << blockers.Planes() << " planes, exp "
+         << blockers.Spheres() << " proxy spheres, " << blockers.Planes()
+         << (planesInLight ? " planes (carried by the light)" : " planes (log space)") << ", exp "
          << proxygi::sh::ExpMethodName(settings.Exp.Method) << "; " << shadowed.load() << " of "
          << n << " receivers had blockers in view (the others skipped the exp)";
     this->Plan.push_back(line.str());
@@ -579,6 +1039,7 @@ int vtkPGIGlobalIllumination::RequestData(
   output->ShallowCopy(receivers);
   output->GetPointData()->AddArray(direct);
   output->GetPointData()->AddArray(indirect);
+  output->GetPointData()->AddArray(indirectShadowed);
   output->GetPointData()->AddArray(local);
   output->GetPointData()->AddArray(total);
   output->GetPointData()->AddArray(visibility);

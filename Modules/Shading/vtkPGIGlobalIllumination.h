@@ -14,7 +14,8 @@
  * |---|---|---|
  * | DirectShadowed | 3 | environment light through SH soft shadows (exit radiance) |
  * | IndirectProxy | 3 | one bounce from the proxies and blocker planes as secondary lights
- * (unshadowed, Sloan 2007) | | LocalLights | 3 | spherical and point lights of the vtkPGILighting,
+ * (unshadowed, Sloan 2007) | | IndirectShadowed | 3 | one bounce from the proxies as spherical
+ * lights, shadowed on both legs (Guerrero 2008) | | LocalLights | 3 | spherical and point lights of the vtkPGILighting,
  * shadowed by the same visibility | | Radiance | 3 | the sum of the effects that ran | | Visibility
  * | n^2 | the SH visibility vector (relight without recomputing) | and a field-data string array
  * "Plan": which effects ran and why.
@@ -30,7 +31,13 @@
  * | Shadows | on | off: unshadowed environment light |
  * | Indirect | on | one-bounce light from the proxies (albedo from their "Albedo" array, else
  * DefaultAlbedo) and planes | | IndirectOperator | AVERAGED | POINT_SAMPLED (cheapest), AVERAGED
- * (D(theta)), EXACT (M(theta), rotations) | | LocalLights | on | spherical lights (analytic L_H
+ * (D(theta)), EXACT (M(theta), rotations) | | IndirectMode | UNSHADOWED | which one-bounce
+ * model fills Radiance: UNSHADOWED (IndirectProxy), SHADOWED (IndirectShadowed: spherical lights
+ * lit at surface samples, from the proxies' SampleOffset/SampleNormal/AlbedoSH arrays written by
+ * vtkPGISphereLightSampler, else samples on the spheres themselves; about one exp per light per
+ * receiver) or OFF; the other array is all zeros | | SphericalLightBlocking | PER_SPHERE |
+ * PER_SPHERE: lights block each other in distance order; PER_OBJECT: in object-distance order
+ * (objects from the proxies' ObjectId) | | LocalLights | on | spherical lights (analytic L_H
  * table, fitted lobes) and point lights (as tiny spheres) | | HierarchyAngle | 0 (off) | degrees;
  * with a proxy hierarchy (Level/Parent arrays), receivers are clustered and each cluster uses the
  * hierarchy cut whose nodes subtend less than this, with ratio vectors (SHEXP 6.3); 20-30 is the
@@ -42,6 +49,17 @@
  * at no cost). The Plan array says what ran, what was skipped, and why.
  * Indirect light runs only when some proxy or plane has a nonzero albedo and
  * the environment is not black; local lights only when the lighting has some.
+ *
+ * IndirectMode SHADOWED (Guerrero et al. 2008, pgiSphericalLights.h): the
+ * leaf proxies become spherical lights, lit at their surface samples (first
+ * pass, once per update: SHEXP visibility, environment and local lights as
+ * uniform spherical lights, Voronoi projection, times the albedo SH) and
+ * gathered per receiver (second pass: w_theta average radiance times each
+ * light's visibility by the difference of two exps, nearer lights blocking;
+ * intersecting lights of one object do not block each other, rule 2 of the
+ * sampling has their occlusion). With HierarchyAngle and a hierarchy, each
+ * cluster's cut of lights carries reflection ratios. It runs when some light
+ * has a nonzero albedo and there is light to bounce.
  *
  * Errors: no receivers, NaN/Inf in receivers or proxies, proxies without a
  * Radius array, a bad environment.
@@ -114,12 +132,50 @@ public:
   };
   vtkSetClampMacro(IndirectOperator, int, INDIRECT_POINT_SAMPLED, INDIRECT_EXACT);
   vtkGetMacro(IndirectOperator, int);
+  /// Which one-bounce model runs; Indirect off means none whatever this says.
+  enum
+  {
+    INDIRECT_MODE_UNSHADOWED = 0,
+    INDIRECT_MODE_SHADOWED = 1,
+    INDIRECT_MODE_OFF = 2
+  };
+  vtkSetClampMacro(IndirectMode, int, INDIRECT_MODE_UNSHADOWED, INDIRECT_MODE_OFF);
+  vtkGetMacro(IndirectMode, int);
+  void SetIndirectModeToUnshadowed() { this->SetIndirectMode(INDIRECT_MODE_UNSHADOWED); }
+  void SetIndirectModeToShadowed() { this->SetIndirectMode(INDIRECT_MODE_SHADOWED); }
+  void SetIndirectModeToOff() { this->SetIndirectMode(INDIRECT_MODE_OFF); }
+  enum
+  {
+    BLOCKING_PER_SPHERE = 0,
+    BLOCKING_PER_OBJECT = 1
+  };
+  vtkSetClampMacro(SphericalLightBlocking, int, BLOCKING_PER_SPHERE, BLOCKING_PER_OBJECT);
+  vtkGetMacro(SphericalLightBlocking, int);
   vtkSetMacro(LocalLights, bool);
   vtkGetMacro(LocalLights, bool);
   vtkBooleanMacro(LocalLights, bool);
   vtkSetMacro(Shadows, bool);
   vtkGetMacro(Shadows, bool);
   vtkBooleanMacro(Shadows, bool);
+  /// How blocker planes shadow: PLANES_IN_LIGHT (default) multiplies the
+  /// light of receivers above every plane by the planes' step functions
+  /// (exact, free per receiver); PLANES_IN_LOG_SPACE accumulates each plane
+  /// as a 90-degree cap log like a sphere (what the GPU mapper does; its exp
+  /// darkens the open hemisphere by ~10% at order 4).
+  enum
+  {
+    PLANES_IN_LIGHT = 0,
+    PLANES_IN_LOG_SPACE = 1
+  };
+  vtkSetClampMacro(PlaneBlocking, int, PLANES_IN_LIGHT, PLANES_IN_LOG_SPACE);
+  vtkGetMacro(PlaneBlocking, int);
+  /// Planes reflect less where the proxies shadow them (on by default): the
+  /// plane light a receiver gets is scaled by the shadowing at the plane
+  /// point it mostly sees (pgiIndirectLight.h PlaneShadowScale); one more
+  /// visibility per receiver that sees a reflecting plane.
+  vtkSetMacro(PlaneBounceShadows, bool);
+  vtkGetMacro(PlaneBounceShadows, bool);
+  vtkBooleanMacro(PlaneBounceShadows, bool);
   vtkSetVector3Macro(DefaultAlbedo, double);
   vtkGetVector3Macro(DefaultAlbedo, double);
   vtkSetStringMacro(AlbedoArrayName);
@@ -155,9 +211,13 @@ protected:
   bool Shadows = true;
   bool Indirect = true;
   int IndirectOperator = INDIRECT_AVERAGED;
+  int IndirectMode = INDIRECT_MODE_UNSHADOWED;
+  int SphericalLightBlocking = BLOCKING_PER_SPHERE;
   bool LocalLights = true;
   double HierarchyAngle = 0.0;
   int ReceiversPerCluster = 256;
+  int PlaneBlocking = PLANES_IN_LIGHT;
+  bool PlaneBounceShadows = true;
   double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
   char* AlbedoArrayName = nullptr;
   std::vector<double> BlockerPlanes; // origin, normal, albedo

@@ -15,6 +15,11 @@ const float pgiPi = 3.14159265358979323846;
 uniform sampler2D pgiCapLogTable; // R: texel (l, row)
 uniform int pgiCapResolution;
 uniform float pgiCapThetaScale;   // (Resolution - 1) / MaxAngle
+uniform sampler2D pgiCapVisTable; // R: texel (l, row), cap visibility
+// IndirectTables (pgiSHLightTables.h): D(theta), Resolution rows of order values.
+uniform sampler2D pgiDTable;      // R: texel (l, row)
+uniform int pgiDResolution;
+uniform float pgiDThetaScale;
 uniform sampler2D pgiOLTable;     // RG: (a, b) at texel (row, 0)
 uniform int pgiOLResolution;
 uniform float pgiOLScale;         // (Resolution - 1) / OLMaxNorm
@@ -30,6 +35,10 @@ uniform int pgiNumPlanes;
 uniform vec3 pgiPlaneOrigin[PGI_MAX_PLANES];
 uniform vec3 pgiPlaneNormal[PGI_MAX_PLANES];
 uniform float pgiSinMinAngle;
+// Receivers at most this high above a blocker plane count as on it (0, the
+// default, for exact positions; image-space GI sets it to cover the rounding
+// of positions rebuilt from view coordinates).
+uniform float pgiPlaneTolerance;
 uniform int pgiSelfShadowRules;
 
 // Environment light: L (per channel), its product matrix M_L and the scaled
@@ -67,6 +76,40 @@ void pgiCapLog(float theta, out float zh[PGI_SH_ORDER])
   {
     float r0 = texelFetch(pgiCapLogTable, ivec2(l, i), 0).r;
     float r1 = texelFetch(pgiCapLogTable, ivec2(l, i + 1), 0).r;
+    zh[l] = r0 + (r1 - r0) * t;
+  }
+}
+
+// CapTables::CapVisibility (float path), same interpolation as pgiCapLog.
+void pgiCapVisibility(float theta, out float zh[PGI_SH_ORDER])
+{
+  int last = pgiCapResolution - 1;
+  float u = theta * pgiCapThetaScale;
+  u = u > 0.0 ? (u < float(last) ? u : float(last)) : 0.0;
+  int i = int(u);
+  i = i < last ? i : last - 1;
+  float t = u - float(i);
+  for (int l = 0; l < PGI_SH_ORDER; ++l)
+  {
+    float r0 = texelFetch(pgiCapVisTable, ivec2(l, i), 0).r;
+    float r1 = texelFetch(pgiCapVisTable, ivec2(l, i + 1), 0).r;
+    zh[l] = r0 + (r1 - r0) * t;
+  }
+}
+
+// IndirectTables::AveragedIndirect (float path): D(theta) as scaled ZH.
+void pgiAveragedIndirect(float theta, out float zh[PGI_SH_ORDER])
+{
+  int last = pgiDResolution - 1;
+  float u = theta * pgiDThetaScale;
+  u = u > 0.0 ? (u < float(last) ? u : float(last)) : 0.0;
+  int i = int(u);
+  i = i < last ? i : last - 1;
+  float t = u - float(i);
+  for (int l = 0; l < PGI_SH_ORDER; ++l)
+  {
+    float r0 = texelFetch(pgiDTable, ivec2(l, i), 0).r;
+    float r1 = texelFetch(pgiDTable, ivec2(l, i + 1), 0).r;
     zh[l] = r0 + (r1 - r0) * t;
   }
 }
@@ -349,7 +392,7 @@ int pgiVisibility(vec3 p, vec3 n, out float g[PGI_SH_N2])
     vec3 o = pgiPlaneOrigin[k];
     vec3 pn = pgiPlaneNormal[k];
     float height = (p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z;
-    if (!(height > 0.0))
+    if (!(height > pgiPlaneTolerance))
     {
       continue;
     }
@@ -382,22 +425,62 @@ void pgiDiffuseTransfer(vec3 n, out float h[PGI_SH_N2])
   }
 }
 
-// EnvironmentShading::Shade, product-matrix path: max(0, (M_L g) . H(N)).
-vec3 pgiShade(vec3 n, float g[PGI_SH_N2])
+// IndirectTables::AveragedRadiance for three channels: rot(D(theta), d) . R.
+vec3 pgiAveragedRadiance(float theta, vec3 d, vec3 radiance[PGI_SH_N2])
+{
+  float zh[PGI_SH_ORDER];
+  pgiAveragedIndirect(theta, zh);
+  float basis[PGI_SH_N2];
+  pgiSHBasis(d, basis);
+  vec3 kappa = vec3(0.0);
+  for (int l = 0; l < PGI_SH_ORDER; ++l)
+  {
+    vec3 band = vec3(0.0);
+    for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+    {
+      band += basis[i] * radiance[i];
+    }
+    kappa += zh[l] * band;
+  }
+  return kappa;
+}
+
+// Rows [0, rows) of M_L g: the SH of the shadowed incident radiance.
+void pgiShadowedLight(float g[PGI_SH_N2], int rows, out vec3 lg[PGI_SH_N2])
+{
+  for (int i = 0; i < PGI_SH_N2; ++i)
+  {
+    vec3 row = vec3(0.0);
+    if (i < rows)
+    {
+      for (int j = 0; j < PGI_SH_N2; ++j)
+      {
+        row += texelFetch(pgiLightMatrix, ivec2(j, i), 0).rgb * g[j];
+      }
+    }
+    lg[i] = row;
+  }
+}
+
+// max(0, lg . H(N)) over the first `rows` coefficients.
+vec3 pgiShadeShadowedLight(vec3 n, vec3 lg[PGI_SH_N2], int rows)
 {
   float h[PGI_SH_N2];
   pgiDiffuseTransfer(n, h);
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < PGI_SH_N2; ++i)
+  for (int i = 0; i < rows; ++i)
   {
-    vec3 row = vec3(0.0);
-    for (int j = 0; j < PGI_SH_N2; ++j)
-    {
-      row += texelFetch(pgiLightMatrix, ivec2(j, i), 0).rgb * g[j];
-    }
-    sum += row * h[i];
+    sum += lg[i] * h[i];
   }
   return max(sum, vec3(0.0));
+}
+
+// EnvironmentShading::Shade, product-matrix path: max(0, (M_L g) . H(N)).
+vec3 pgiShade(vec3 n, float g[PGI_SH_N2])
+{
+  vec3 lg[PGI_SH_N2];
+  pgiShadowedLight(g, PGI_SH_N2, lg);
+  return pgiShadeShadowedLight(n, lg, PGI_SH_N2);
 }
 
 // EnvironmentShading::ShadeUnshadowed: H(N) . L, exact, not clamped.

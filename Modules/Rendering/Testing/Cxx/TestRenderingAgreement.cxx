@@ -143,6 +143,8 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* lighting, const Case& c, i
     gi->IndirectOff();
     gi->LocalLightsOff();
     gi->SetShadingPath(path);
+    // The mapper accumulates planes in log space, as the filter did before.
+    gi->SetPlaneBlocking(vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE);
     for (const auto& p : c.Planes)
     {
       gi->AddBlockerPlane(p.data(), p.data() + 3);

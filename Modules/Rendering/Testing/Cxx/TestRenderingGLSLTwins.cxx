@@ -11,6 +11,7 @@
 #include "pgiEnvironmentShading.h"
 #include "pgiSHBasis.h"
 #include "pgiSHExp.h"
+#include "pgiSHLightTables.h"
 #include "pgiSHTables.h"
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
@@ -282,6 +283,66 @@ int TestRenderingGLSLTwins(int, char*[])
         }
         Report("pgiCapLog vs CapTables::CapLog", order, lookup, 2e-6);
         Report("pgiRotateScaledZonal vs C++", order, rotation, 4e-6);
+      }
+    }
+
+    // Cap-visibility and averaged-indirect D(theta) lookups, and the
+    // averaged radiance of a proxy (image-space indirect light).
+    {
+      in.assign(4 * samples, 0.0f);
+      for (int s = 0; s < samples; ++s)
+      {
+        const float theta = s == 0 ? 0.0f
+          : s == 1                 ? static_cast<float>(sh::CapTables::MaxAngle)
+          : s == 2                 ? 2.0f
+                   : static_cast<float>(random.Uniform(0.0, sh::CapTables::MaxAngle));
+        in[4 * s] = theta;
+        random.Direction(&in[4 * s + 1]);
+      }
+      const int zhOuts = Vec4s(order);
+      // Radiance SH the GLSL and the C++ both build from i.
+      auto radiance = [](int i, int c)
+      { return c == 0 ? 0.5f - 0.05f * float(i) : (c == 1 ? 0.02f * float(i * i % 7) : 0.3f); };
+      const std::string body =
+        "  float vis[PGI_SH_ORDER];\n  pgiCapVisibility(pgiIn0.x, vis);\n"
+        "  float d[PGI_SH_ORDER];\n  pgiAveragedIndirect(pgiIn0.x, d);\n"
+        "  vec3 r[PGI_SH_N2];\n"
+        "  for (int i = 0; i < PGI_SH_N2; ++i)\n"
+        "  {\n"
+        "    r[i] = vec3(0.5 - 0.05 * float(i), 0.02 * float(i * i % 7), 0.3);\n"
+        "  }\n"
+        "  vec3 kappa = pgiAveragedRadiance(pgiIn0.x, pgiIn0.yzw, r);\n" +
+        Pack("vis", order, 0) + Pack("d", order, zhOuts) + "  pgiOut" + std::to_string(2 * zhOuts) +
+        " = vec4(kappa, 0.0);\n";
+      if (run(body, 1, 2 * zhOuts + 1))
+      {
+        Stats visibility, averaged, kappa;
+        const int stride = 4 * (2 * zhOuts + 1);
+        const sh::IndirectTables& indirect = sh::IndirectTables::Get(order);
+        std::vector<float> rc(n2);
+        for (int s = 0; s < samples; ++s)
+        {
+          float zv[sh::MaxOrder], zd[sh::MaxOrder];
+          tables.CapVisibility(in[4 * s], zv);
+          indirect.AveragedIndirect(in[4 * s], zd);
+          for (int l = 0; l < order; ++l)
+          {
+            visibility.Add(out[stride * s + l], zv[l]);
+            averaged.Add(out[stride * s + 4 * zhOuts + l], zd[l]);
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            for (int i = 0; i < n2; ++i)
+            {
+              rc[i] = radiance(i, c);
+            }
+            kappa.Add(out[stride * s + 8 * zhOuts + c],
+              indirect.AveragedRadiance(in[4 * s], &in[4 * s + 1], rc.data()));
+          }
+        }
+        Report("pgiCapVisibility vs CapTables", order, visibility, 2e-6);
+        Report("pgiAveragedIndirect vs IndirectTables", order, averaged, 2e-6);
+        Report("pgiAveragedRadiance vs IndirectTables", order, kappa, 1e-5);
       }
     }
 

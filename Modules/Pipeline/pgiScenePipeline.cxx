@@ -1,0 +1,414 @@
+#include "pgiScenePipeline.h"
+
+#include "vtkPGIGlobalIllumination.h"
+#include "vtkPGILighting.h"
+#include "vtkPGIReferenceIllumination.h"
+#include "vtkPGISphereHierarchy.h"
+#include "vtkPGISphereLightSampler.h"
+#include "vtkPGISphereSetApproximation.h"
+
+#include "vtkAppendPolyData.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtkXMLPolyDataWriter.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <sys/stat.h>
+
+namespace proxygi
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+bool Exists(const std::string& path)
+{
+  return !path.empty() && static_cast<bool>(std::ifstream(path));
+}
+
+vtkSmartPointer<vtkPolyData> Read(const std::string& path)
+{
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* out = reader->GetOutput();
+  return out && out->GetNumberOfPoints() > 0 ? vtkSmartPointer<vtkPolyData>(out) : nullptr;
+}
+
+void Write(vtkPolyData* data, const std::string& path)
+{
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(data);
+  writer->SetDataModeToAppended();
+  writer->Write();
+}
+
+// A cache key that changes whenever what the cached data depends on does.
+std::string Key(const std::string& description)
+{
+  std::ostringstream s;
+  s << std::hex << std::hash<std::string>()(description);
+  return s.str();
+}
+
+std::string Describe(const SceneObject& o)
+{
+  std::ostringstream s;
+  s.precision(17);
+  s << o.Name << '|' << o.MeshPath << '|' << static_cast<int>(o.Type) << '|' << o.Scale;
+  for (int i = 0; i < 3; ++i)
+  {
+    s << '|' << o.Translate[i] << '|' << o.Rotate[i] << '|' << o.Albedo[i];
+  }
+  return s.str();
+}
+
+std::string DescribeScene(const SceneDescription& scene)
+{
+  std::ostringstream s;
+  s.precision(17);
+  s << scene.Name << '|' << scene.EnvironmentMap << '|' << scene.EnvironmentRotation << '|'
+    << scene.EnvironmentScale << '|' << scene.Lights.size();
+  for (const SceneObject& o : scene.Objects)
+  {
+    s << '#' << Describe(o);
+  }
+  for (const SceneLight& l : scene.Lights)
+  {
+    s << '#' << l.Sphere << l.Position[0] << l.Position[1] << l.Position[2] << l.Radius
+      << l.Value[0];
+  }
+  return s.str();
+}
+} // namespace
+
+std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(const LoadedScene& loaded)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> receivers;
+  for (const auto& object : loaded.Objects)
+  {
+    vtkNew<vtkPolyDataNormals> normals;
+    normals->SetInputData(object);
+    normals->SplittingOff();
+    normals->ConsistencyOn();
+    normals->AutoOrientNormalsOff();
+    normals->Update();
+    auto copy = vtkSmartPointer<vtkPolyData>::New();
+    copy->DeepCopy(normals->GetOutput());
+    receivers.push_back(copy);
+  }
+  return receivers;
+}
+
+bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded,
+  int spheresPerMesh, const std::string& cacheDir, SceneProxies& proxies, std::string& error)
+{
+  const auto t0 = Clock::now();
+  if (!cacheDir.empty())
+  {
+    mkdir(cacheDir.c_str(), 0755);
+  }
+  vtkNew<vtkPoints> centres;
+  vtkNew<vtkFloatArray> radii, albedos;
+  radii->SetName("Radius");
+  albedos->SetName("Albedo");
+  albedos->SetNumberOfComponents(3);
+  vtkNew<vtkIntArray> objectIds;
+  objectIds->SetName("ObjectId");
+  proxies.Planes.clear();
+  proxies.Cached = true;
+  for (std::size_t k = 0; k < scene.Objects.size() && k < loaded.Objects.size(); ++k)
+  {
+    const SceneObject& object = scene.Objects[k];
+    vtkPolyData* mesh = loaded.Objects[k];
+    double b[6];
+    mesh->GetBounds(b);
+    const double centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+    if (object.Type == SceneObject::Kind::Plane)
+    {
+      double n[3] = { 0, 0, 1 };
+      vtkNew<vtkPolyDataNormals> normals;
+      normals->SetInputData(mesh);
+      normals->ComputeCellNormalsOn();
+      normals->ComputePointNormalsOff();
+      normals->Update();
+      if (vtkDataArray* cellNormals = normals->GetOutput()->GetCellData()->GetNormals())
+      {
+        cellNormals->GetTuple(0, n);
+      }
+      proxies.Planes.push_back({ centre[0], centre[1], centre[2], n[0], n[1], n[2],
+        object.Albedo[0], object.Albedo[1], object.Albedo[2] });
+      continue;
+    }
+    if (object.Type == SceneObject::Kind::Sphere)
+    {
+      centres->InsertNextPoint(centre);
+      radii->InsertNextValue(static_cast<float>(0.5 * (b[1] - b[0])));
+      albedos->InsertNextTuple(object.Albedo);
+      objectIds->InsertNextValue(static_cast<int>(k));
+      continue;
+    }
+    const std::string cached = cacheDir.empty()
+      ? std::string()
+      : cacheDir + "/proxies-" +
+        Key(Describe(object) + '|' + std::to_string(spheresPerMesh) + '|' +
+          std::to_string(mesh->GetNumberOfPoints())) +
+        ".vtp";
+    vtkSmartPointer<vtkPolyData> set = Exists(cached) ? Read(cached) : nullptr;
+    if (!set)
+    {
+      proxies.Cached = false;
+      vtkNew<vtkPGISphereSetApproximation> approximation;
+      approximation->SetInputData(mesh);
+      approximation->SetNumberOfSpheres(spheresPerMesh);
+      approximation->Update();
+      set = approximation->GetOutput();
+      if (!cached.empty() && set->GetNumberOfPoints() > 0)
+      {
+        Write(set, cached);
+      }
+    }
+    vtkDataArray* r = set->GetPointData()->GetArray("Radius");
+    vtkDataArray* level = set->GetPointData()->GetArray("Level");
+    if (!r || set->GetNumberOfPoints() == 0)
+    {
+      error = "no sphere proxies could be built for '" + object.Name + "'";
+      return false;
+    }
+    for (vtkIdType i = 0; i < set->GetNumberOfPoints(); ++i)
+    {
+      if (!level || level->GetTuple1(i) == 0.0)
+      {
+        centres->InsertNextPoint(set->GetPoint(i));
+        radii->InsertNextValue(static_cast<float>(r->GetTuple1(i)));
+        albedos->InsertNextTuple(object.Albedo);
+        objectIds->InsertNextValue(static_cast<int>(k));
+      }
+    }
+  }
+  vtkNew<vtkPolyData> leaves;
+  leaves->SetPoints(centres);
+  leaves->GetPointData()->AddArray(radii);
+  leaves->GetPointData()->AddArray(albedos);
+  leaves->GetPointData()->AddArray(objectIds);
+  proxies.Leaves = leaves->GetNumberOfPoints();
+  if (proxies.Leaves > 0)
+  {
+    vtkNew<vtkPGISphereHierarchy> hierarchy;
+    hierarchy->SetInputData(leaves);
+    // Surface samples and albedo SH of every sphere, parents included, for
+    // the shadowed one-bounce light (vtkPGIGlobalIllumination IndirectMode).
+    vtkNew<vtkAppendPolyData> meshes;
+    for (std::size_t k = 0; k < scene.Objects.size() && k < loaded.Objects.size(); ++k)
+    {
+      if (scene.Objects[k].Type == SceneObject::Kind::Plane)
+      {
+        continue;
+      }
+      vtkNew<vtkPolyData> mesh;
+      mesh->ShallowCopy(loaded.Objects[k]);
+      vtkNew<vtkIntArray> id;
+      id->SetName("ObjectId");
+      id->SetNumberOfTuples(mesh->GetNumberOfPoints());
+      id->FillValue(static_cast<int>(k));
+      mesh->GetPointData()->AddArray(id);
+      meshes->AddInputData(mesh);
+    }
+    vtkNew<vtkPGISphereLightSampler> sampler;
+    sampler->SetInputConnection(meshes->GetOutputPort());
+    sampler->SetProxiesConnection(hierarchy->GetOutputPort());
+    sampler->Update();
+    proxies.Spheres = sampler->GetOutput();
+    if (!proxies.Spheres || proxies.Spheres->GetNumberOfPoints() == 0)
+    {
+      error = "sampling the proxies' surfaces failed";
+      return false;
+    }
+  }
+  else
+  {
+    proxies.Spheres = leaves;
+  }
+  proxies.Seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return true;
+}
+
+void ConfigureGlobalIllumination(vtkPGIGlobalIllumination* gi, const SceneDescription& scene,
+  const LoadedScene& loaded, const SceneProxies& proxies)
+{
+  gi->SetLighting(loaded.Lighting);
+  gi->SetProxiesData(proxies.Spheres);
+  gi->RemoveAllBlockerPlanes();
+  for (const auto& p : proxies.Planes)
+  {
+    gi->AddBlockerPlane(p.data(), p.data() + 3, p.data() + 6);
+  }
+  gi->SetShadows(scene.Shadows);
+  gi->SetIndirect(scene.Indirect);
+  gi->SetLocalLights(scene.LocalLights);
+}
+
+std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(const SceneDescription& scene,
+  const LoadedScene& loaded, const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, int spp,
+  const std::string& cacheDir, const SceneProxies* proxies, double& seconds, std::string& error,
+  unsigned int seed)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> result;
+  seconds = 0.0;
+  if (!cacheDir.empty())
+  {
+    mkdir(cacheDir.c_str(), 0755);
+  }
+  const std::string sceneKey = DescribeScene(scene);
+  for (std::size_t k = 0; k < receivers.size(); ++k)
+  {
+    const std::string cached = cacheDir.empty()
+      ? std::string()
+      : cacheDir + "/reference-" +
+        Key(sceneKey + '|' + std::to_string(k) + '|' +
+          std::to_string(receivers[k]->GetNumberOfPoints()) +
+          (proxies ? "|proxies" + std::to_string(proxies->Leaves) : std::string()) +
+          (seed != 1 ? "|seed" + std::to_string(seed) : std::string())) +
+        "-spp" + std::to_string(spp) + ".vtp";
+    vtkSmartPointer<vtkPolyData> reference = Exists(cached) ? Read(cached) : nullptr;
+    if (reference && reference->GetNumberOfPoints() == receivers[k]->GetNumberOfPoints())
+    {
+      double s = 0.0;
+      std::ifstream(cached + ".seconds") >> s;
+      seconds += s;
+      result.push_back(reference);
+      continue;
+    }
+    vtkNew<vtkPGIReferenceIllumination> ref;
+    ref->SetInputData(receivers[k]);
+    // Proxy mode: the other objects' meshes are replaced by their spheres
+    // (planes stay: they are exact in the SH filter too).
+    for (std::size_t j = 0; j < loaded.Objects.size(); ++j)
+    {
+      if (j != k && (!proxies || scene.Objects[j].Type == SceneObject::Kind::Plane))
+      {
+        ref->AddSceneObjectData(loaded.Objects[j]);
+      }
+    }
+    if (proxies)
+    {
+      vtkNew<vtkPolyData> others;
+      vtkNew<vtkPoints> centres;
+      vtkNew<vtkFloatArray> radii, albedos;
+      radii->SetName("Radius");
+      albedos->SetName("Albedo");
+      albedos->SetNumberOfComponents(3);
+      vtkDataArray* id = proxies->Spheres->GetPointData()->GetArray("ObjectId");
+      vtkDataArray* r = proxies->Spheres->GetPointData()->GetArray("Radius");
+      vtkDataArray* a = proxies->Spheres->GetPointData()->GetArray("Albedo");
+      for (vtkIdType i = 0; i < proxies->Leaves; ++i)
+      {
+        if (static_cast<std::size_t>(id->GetTuple1(i)) != k)
+        {
+          centres->InsertNextPoint(proxies->Spheres->GetPoint(i));
+          radii->InsertNextTuple(r->GetTuple(i));
+          albedos->InsertNextTuple(a->GetTuple(i));
+        }
+      }
+      others->SetPoints(centres);
+      others->GetPointData()->AddArray(radii);
+      others->GetPointData()->AddArray(albedos);
+      ref->SetProxiesData(others);
+      ref->UseProxiesOn();
+    }
+    ref->SetLighting(loaded.Lighting);
+    ref->SetSamples(spp);
+    ref->SetSeed(seed);
+    const auto t0 = Clock::now();
+    ref->Update();
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    seconds += s;
+    reference = ref->GetOutput();
+    if (!reference->GetPointData()->GetArray("Radiance"))
+    {
+      error = "the Embree reference failed for object '" + scene.Objects[k].Name + "'";
+      return {};
+    }
+    if (!cached.empty())
+    {
+      Write(reference, cached);
+      std::ofstream(cached + ".seconds") << s;
+    }
+    result.push_back(reference);
+  }
+  return result;
+}
+
+double RelativeRMSE(const std::vector<vtkSmartPointer<vtkPolyData>>& a, const char* arrayA,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& b, const char* arrayB,
+  const std::vector<std::size_t>& objects)
+{
+  double sq = 0.0, ref = 0.0;
+  for (std::size_t k = 0; k < a.size() && k < b.size(); ++k)
+  {
+    if (!objects.empty() && std::find(objects.begin(), objects.end(), k) == objects.end())
+    {
+      continue;
+    }
+    vtkDataArray* x = a[k]->GetPointData()->GetArray(arrayA);
+    vtkDataArray* y = b[k]->GetPointData()->GetArray(arrayB);
+    if (!x || !y || x->GetNumberOfTuples() != y->GetNumberOfTuples())
+    {
+      return std::nan("");
+    }
+    for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const double d = x->GetComponent(i, c) - y->GetComponent(i, c);
+        sq += d * d;
+        ref += y->GetComponent(i, c) * y->GetComponent(i, c);
+      }
+    }
+  }
+  return ref > 0.0 ? std::sqrt(sq / ref) : 0.0;
+}
+
+double RelativeRMS(const std::vector<vtkSmartPointer<vtkPolyData>>& a, const char* arrayA,
+  const char* arrayValue, const std::vector<std::size_t>& objects)
+{
+  double sq = 0.0, ref = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+  {
+    if (!objects.empty() && std::find(objects.begin(), objects.end(), k) == objects.end())
+    {
+      continue;
+    }
+    vtkDataArray* x = a[k]->GetPointData()->GetArray(arrayA);
+    vtkDataArray* y = a[k]->GetPointData()->GetArray(arrayValue);
+    if (!x || !y)
+    {
+      return std::nan("");
+    }
+    for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        sq += x->GetComponent(i, c) * x->GetComponent(i, c);
+        ref += y->GetComponent(i, c) * y->GetComponent(i, c);
+      }
+    }
+  }
+  return ref > 0.0 ? std::sqrt(sq / ref) : 0.0;
+}
+
+} // namespace proxygi

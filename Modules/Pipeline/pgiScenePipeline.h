@@ -1,0 +1,83 @@
+/**
+ * @file pgiScenePipeline.h
+ * @brief What every program that renders a scene does the same way: sphere
+ * proxies for the scene's meshes (built once, cached on disk), the GI filter
+ * configured from the scene, the Embree reference of the same receivers
+ * (cached), and the error metric of the accuracy/time report.
+ */
+#ifndef pgiScenePipeline_h
+#define pgiScenePipeline_h
+
+#include "ProxyGIPipelineModule.h"
+
+#include "pgiScene.h"
+#include "vtkSmartPointer.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkPGIGlobalIllumination;
+class vtkPolyData;
+
+namespace proxygi
+{
+
+struct SceneProxies
+{
+  /// Leaves of every mesh (vtkPGISphereSetApproximation) and every scene
+  /// sphere (exact), then the hierarchy above them (vtkPGISphereHierarchy):
+  /// "Radius", "Albedo", "ObjectId" (scene object index), "Level", "Parent".
+  vtkSmartPointer<vtkPolyData> Spheres;
+  /// Scene planes as infinite blocker planes: origin, normal, albedo.
+  std::vector<std::array<double, 9>> Planes;
+  vtkIdType Leaves = 0;
+  double Seconds = 0.0; // building (or reading) them
+  bool Cached = false;  // every mesh's set came from the cache
+};
+
+/// Proxies of a loaded scene, `spheresPerMesh` per mesh; the sets are cached
+/// in `cacheDir` (created if missing; "" = no cache). False with a message.
+PROXYGIPIPELINE_EXPORT bool BuildSceneProxies(const SceneDescription& scene,
+  const LoadedScene& loaded, int spheresPerMesh, const std::string& cacheDir,
+  SceneProxies& proxies, std::string& error);
+
+/// The receivers of a scene: every object with point normals (unsplit).
+PROXYGIPIPELINE_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(
+  const LoadedScene& loaded);
+
+/// Sets the filter's lighting, proxies, planes and the scene's effect
+/// switches; knobs (order, method, ...) are left to the caller.
+PROXYGIPIPELINE_EXPORT void ConfigureGlobalIllumination(vtkPGIGlobalIllumination* gi,
+  const SceneDescription& scene, const LoadedScene& loaded, const SceneProxies& proxies);
+
+/**
+ * Embree reference of every receiver (object k is the receiver, the others
+ * block and reflect), `spp` samples, one bounce; with `proxies` the meshes
+ * of the other objects are replaced by their sphere proxies (the reference's
+ * proxy mode: it separates proxy-geometry error from SH error). Cached in
+ * `cacheDir` by scene name, object, vertex count, spp and mode; `seconds`
+ * is the tracing time (read back from the cache when cached). Runs meant to
+ * be compared with each other take different seeds (independent noise).
+ * Empty on error.
+ */
+PROXYGIPIPELINE_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(
+  const SceneDescription& scene, const LoadedScene& loaded,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, int spp,
+  const std::string& cacheDir, const SceneProxies* proxies, double& seconds, std::string& error,
+  unsigned int seed = 1);
+
+/// Relative RMSE sqrt(sum |a-b|^2 / sum |b|^2) of two RGB point arrays over
+/// the given objects (all when `objects` is empty); 0 when b is all zero.
+PROXYGIPIPELINE_EXPORT double RelativeRMSE(const std::vector<vtkSmartPointer<vtkPolyData>>& a,
+  const char* arrayA, const std::vector<vtkSmartPointer<vtkPolyData>>& b, const char* arrayB,
+  const std::vector<std::size_t>& objects = {});
+
+/// Relative RMS of an array (a reference's standard error) against another
+/// (its value), the noise floor of RelativeRMSE.
+PROXYGIPIPELINE_EXPORT double RelativeRMS(const std::vector<vtkSmartPointer<vtkPolyData>>& a,
+  const char* arrayA, const char* arrayValue, const std::vector<std::size_t>& objects = {});
+
+} // namespace proxygi
+
+#endif

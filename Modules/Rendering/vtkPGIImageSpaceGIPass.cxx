@@ -1,0 +1,1207 @@
+#include "vtkPGIImageSpaceGIPass.h"
+
+#include "pgiGIShaders.h"
+#include "pgiISExpFS.h"
+#include "pgiISLibrary.h"
+#include "pgiISReceiverDownsampleFS.h"
+#include "pgiISReceiverFS.h"
+#include "pgiISShadowedLightFS.h"
+#include "pgiISSplatIndirectFS.h"
+#include "pgiISSplatShadowFS.h"
+#include "pgiISSplatVS.h"
+#include "pgiISUpsampleFS.h"
+
+#include "pgiEnvironmentMap.h"
+#include "pgiIndirectLight.h"
+#include "pgiMaterial.h"
+#include "pgiSH.h"
+#include "pgiSHTripleProduct.h"
+#include "pgiSHZonal.h"
+#include "vtkPGILighting.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkFrameBufferObjectBase.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLPolyDataMapper.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderUtilities.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkRenderState.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+vtkStandardNewMacro(vtkPGIImageSpaceGIPass);
+vtkCxxSetObjectMacro(vtkPGIImageSpaceGIPass, DelegatePass, vtkRenderPass);
+vtkCxxSetObjectMacro(vtkPGIImageSpaceGIPass, Proxies, vtkPolyData);
+vtkCxxSetObjectMacro(vtkPGIImageSpaceGIPass, Lighting, vtkPGILighting);
+
+namespace
+{
+constexpr int MaxTargets = 4; // order 4: 16 coefficients
+// Shading needs bands 0..2 of the shadowed light (H(N) has no band 3):
+// 3 x 9 floats at most.
+constexpr int MaxLightTargets = 8; // and 3 floats of indirect light
+int ShadeRows(int order)
+{
+  const int bands = std::min(order, 3);
+  return bands * bands;
+}
+
+vtkSmartPointer<vtkTextureObject> NewTarget(
+  vtkOpenGLRenderWindow* window, int width, int height, bool floating)
+{
+  auto t = vtkSmartPointer<vtkTextureObject>::New();
+  t->SetContext(window);
+  t->SetMinificationFilter(vtkTextureObject::Nearest);
+  t->SetMagnificationFilter(vtkTextureObject::Nearest);
+  t->SetWrapS(vtkTextureObject::ClampToEdge);
+  t->SetWrapT(vtkTextureObject::ClampToEdge);
+  if (floating)
+  {
+    t->SetInternalFormat(GL_RGBA32F);
+    t->SetFormat(GL_RGBA);
+    t->SetDataType(GL_FLOAT);
+    t->Allocate2D(width, height, 4, VTK_FLOAT);
+  }
+  else
+  {
+    t->Allocate2D(width, height, 4, VTK_UNSIGNED_CHAR);
+  }
+  return t;
+}
+
+// GLSL moving the order^2 coefficients of `array` to or from vec4 targets.
+std::string OutputsFrom(const char* array, int n2)
+{
+  std::ostringstream code;
+  for (int k = 0; k < (n2 + 3) / 4; ++k)
+  {
+    code << "  gl_FragData[" << k << "] = vec4(";
+    for (int c = 0; c < 4; ++c)
+    {
+      const int i = 4 * k + c;
+      code << (c ? ", " : "")
+           << (i < n2 ? std::string(array) + "[" + std::to_string(i) + "]" : "0.0");
+    }
+    code << ");\n";
+  }
+  return code.str();
+}
+
+std::string SamplerDeclarations(const char* name, int n2)
+{
+  std::ostringstream code;
+  for (int k = 0; k < (n2 + 3) / 4; ++k)
+  {
+    code << "uniform sampler2D " << name << k << ";\n";
+  }
+  return code.str();
+}
+
+std::string InputsTo(const char* array, const char* sampler, const char* texel, int n2)
+{
+  std::ostringstream code;
+  const char xyzw[] = "xyzw";
+  for (int k = 0; k < (n2 + 3) / 4; ++k)
+  {
+    code << "    {\n      vec4 t = texelFetch(" << sampler << k << ", " << texel << ", 0);\n";
+    for (int c = 0; c < 4 && 4 * k + c < n2; ++c)
+    {
+      code << "      " << array << "[" << 4 * k + c << "] = t." << xyzw[c] << ";\n";
+    }
+    code << "    }\n";
+  }
+  return code.str();
+}
+
+// Column-major float copies for glUniformMatrix (VTK matrices are row-major).
+void ColumnMajor(const vtkMatrix4x4* m, float out[16])
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      out[4 * c + r] = static_cast<float>(m->GetElement(r, c));
+    }
+  }
+}
+
+// The 36 corners of the unit cube's triangles, counter-clockwise seen from
+// outside (the splat draws back faces only: each pixel once, also with the
+// camera inside the box).
+std::vector<float> CubeTriangles()
+{
+  std::vector<float> v;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (int sign = -1; sign <= 1; sign += 2)
+    {
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+      std::array<std::array<float, 3>, 4> q;
+      const float uv[4][2] = { { -1, -1 }, { 1, -1 }, { 1, 1 }, { -1, 1 } };
+      for (int k = 0; k < 4; ++k)
+      {
+        q[k][axis] = static_cast<float>(sign);
+        q[k][a] = uv[k][0];
+        q[k][b] = uv[k][1];
+      }
+      // (a, b, axis) is right-handed, so this quad faces +axis.
+      if (sign < 0)
+      {
+        std::swap(q[1], q[3]);
+      }
+      for (int k : { 0, 1, 2, 0, 2, 3 })
+      {
+        v.insert(v.end(), q[k].begin(), q[k].end());
+      }
+    }
+  }
+  return v;
+}
+} // namespace
+
+struct vtkPGIImageSpaceGIPass::Internals
+{
+  proxygi::gpu::GIResources Resources;
+  vtkOpenGLRenderWindow* Window = nullptr;
+  int LightOrder = 0;
+  vtkMTimeType LightingTime = 0;
+  bool HaveLight = false;
+  std::vector<float> Spheres;
+  vtkMTimeType ProxiesTime = 0;
+  std::vector<double> Planes;
+  bool BlockersSet = false;
+
+  // Full-resolution receiver targets (VTK colour, view-space position,
+  // normal, albedo, depth), the receiver buffer (world position + eye
+  // depth, normal + mask), the log-visibility sums and the visibility.
+  vtkSmartPointer<vtkOpenGLFramebufferObject> FBO;
+  vtkSmartPointer<vtkTextureObject> GColor, GPosition, GNormal, GAlbedo, GDepth;
+  vtkSmartPointer<vtkTextureObject> RPosition, RNormal;
+  vtkSmartPointer<vtkTextureObject> Accum[MaxTargets], Vis[MaxTargets];
+  vtkSmartPointer<vtkTextureObject> Lit[MaxLightTargets];
+  vtkSmartPointer<vtkTextureObject> IndirectSum, ProxyAlbedo;
+  std::vector<float> Response; // pgiResponse, interleaved RGB
+  std::vector<double> LightSH; // the light, 3 x n2 (channel-major)
+  bool ResponseDirty = true;
+  std::string AlbedoKey;
+  std::vector<float> Albedos; // 4 per proxy
+  bool AlbedoDirty = true;
+  int LightTargets = 0;
+  int Width = 0, Height = 0, LowWidth = 0, LowHeight = 0, Scale = 0, Targets = 0;
+
+  std::unique_ptr<vtkOpenGLQuadHelper> Downsample, Exp, Light, Upsample;
+  int ProgramOrder = 0;
+  int ProgramFallback = -1;
+  std::string SplatVS, SplatFS, SplatIndirectVS, SplatIndirectFS;
+  vtkNew<vtkOpenGLBufferObject> Cube;
+  vtkNew<vtkOpenGLVertexArrayObject> CubeVAO;
+  int CubeProgram = 0;
+
+  double LightExpansion = 15.0; // LightingExpansionFactor of the light
+  double LightExpansionTolerance = 0.0;
+  double UsedExpansion = 15.0;
+  double Times[NumberOfPasses] = {};
+  bool HaveFrame = false;
+
+  void ReleaseTargets(vtkWindow* w)
+  {
+    for (auto* t : { &GColor, &GPosition, &GNormal, &GAlbedo, &GDepth, &RPosition, &RNormal })
+    {
+      if (*t)
+      {
+        (*t)->ReleaseGraphicsResources(w);
+        *t = nullptr;
+      }
+    }
+    for (int k = 0; k < MaxTargets; ++k)
+    {
+      for (auto* t : { &Accum[k], &Vis[k] })
+      {
+        if (*t)
+        {
+          (*t)->ReleaseGraphicsResources(w);
+          *t = nullptr;
+        }
+      }
+    }
+    if (IndirectSum)
+    {
+      IndirectSum->ReleaseGraphicsResources(w);
+      IndirectSum = nullptr;
+    }
+    for (int k = 0; k < MaxLightTargets; ++k)
+    {
+      if (Lit[k])
+      {
+        Lit[k]->ReleaseGraphicsResources(w);
+        Lit[k] = nullptr;
+      }
+    }
+    Width = Height = LowWidth = LowHeight = Scale = Targets = LightTargets = 0;
+    HaveFrame = false;
+  }
+};
+
+vtkPGIImageSpaceGIPass::vtkPGIImageSpaceGIPass()
+  : GPU(new Internals)
+{
+  vtkNew<vtkRenderStepsPass> steps;
+  this->SetDelegatePass(steps);
+  this->SetProxyAlbedoArrayName("Albedo");
+}
+
+vtkPGIImageSpaceGIPass::~vtkPGIImageSpaceGIPass()
+{
+  this->SetDelegatePass(nullptr);
+  this->SetProxies(nullptr);
+  this->SetLighting(nullptr);
+  this->SetProxyAlbedoArrayName(nullptr);
+}
+
+void vtkPGIImageSpaceGIPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "DelegatePass: " << this->DelegatePass << "\n";
+  os << indent << "Proxies: " << this->Proxies << "\n";
+  os << indent << "Lighting: " << this->Lighting << "\n";
+  os << indent << "BlockerPlanes: " << this->BlockerPlanes.size() / 6 << "\n";
+  os << indent << "ReceiverScale: " << this->ReceiverScale << "\n";
+  os << indent << "Upsampling: " << (this->Upsampling == Bilateral ? "Bilateral" : "Bilinear")
+     << "\n";
+  os << indent << "Order: " << this->Order << "\n";
+  os << indent << "ExpansionFactor: " << this->ExpansionFactor << "\n";
+  os << indent << "AutomaticExpansionFactor: " << this->AutomaticExpansionFactor << "\n";
+  os << indent << "ExpansionTolerance: " << this->ExpansionTolerance << "\n";
+  os << indent << "Shadows: " << this->Shadows << "\n";
+  os << indent << "Indirect: " << this->Indirect << "\n";
+  os << indent << "IndirectExpansionFactor: " << this->IndirectExpansionFactor << "\n";
+  os << indent << "DefaultProxyAlbedo: " << this->DefaultProxyAlbedo[0] << " "
+     << this->DefaultProxyAlbedo[1] << " " << this->DefaultProxyAlbedo[2] << "\n";
+  os << indent << "ProxyAlbedoArrayName: "
+     << (this->ProxyAlbedoArrayName ? this->ProxyAlbedoArrayName : "(none)") << "\n";
+  os << indent << "SelfShadowRules: " << this->SelfShadowRules << "\n";
+  os << indent << "MinBlockerAngle: " << this->MinBlockerAngle << "\n";
+  os << indent << "HybridMaxNorm: " << this->HybridMaxNorm << "\n";
+  os << indent << "RangeTolerance: " << this->RangeTolerance << "\n";
+  os << indent << "NormalPower: " << this->NormalPower << "\n";
+  os << indent << "DepthEpsilon: " << this->DepthEpsilon << "\n";
+  os << indent << "FallbackThreshold: " << this->FallbackThreshold << "\n";
+  os << indent << "Fallback: " << (this->Fallback == ExactFallback ? "Exact" : "NearestSample")
+     << "\n";
+  os << indent << "Exposure: " << this->Exposure << "\n";
+  os << indent << "SRGBOutput: " << this->SRGBOutput << "\n";
+  os << indent << "MeasurePassTimes: " << this->MeasurePassTimes << "\n";
+  os << indent << "Status: " << this->Status << "\n";
+}
+
+void vtkPGIImageSpaceGIPass::SetReceiverScale(int scale)
+{
+  if (scale != 1 && scale != 2 && scale != 4 && scale != 8)
+  {
+    vtkErrorMacro("ReceiverScale must be 1, 2, 4 or 8, not " << scale << ".");
+    return;
+  }
+  if (scale != this->ReceiverScale)
+  {
+    this->ReceiverScale = scale;
+    this->Modified();
+  }
+}
+
+void vtkPGIImageSpaceGIPass::AddBlockerPlane(const double origin[3], const double normal[3])
+{
+  const double black[3] = { 0.0, 0.0, 0.0 };
+  this->AddBlockerPlane(origin, normal, black);
+}
+
+void vtkPGIImageSpaceGIPass::AddBlockerPlane(
+  const double origin[3], const double normal[3], const double albedo[3])
+{
+  if (this->BlockerPlanes.size() / 6 >= static_cast<std::size_t>(proxygi::gpu::MaxPlanes))
+  {
+    vtkErrorMacro("At most " << proxygi::gpu::MaxPlanes << " blocker planes.");
+    return;
+  }
+  const double len =
+    std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  this->BlockerPlanes.insert(this->BlockerPlanes.end(), origin, origin + 3);
+  for (int k = 0; k < 3; ++k)
+  {
+    this->BlockerPlanes.push_back(len > 0.0 ? normal[k] / len : (k == 2 ? 1.0 : 0.0));
+  }
+  this->PlaneAlbedos.insert(this->PlaneAlbedos.end(), albedo, albedo + 3);
+  this->Modified();
+}
+
+void vtkPGIImageSpaceGIPass::RemoveAllBlockerPlanes()
+{
+  this->BlockerPlanes.clear();
+  this->PlaneAlbedos.clear();
+  this->Modified();
+}
+
+double vtkPGIImageSpaceGIPass::GetUsedExpansionFactor() const
+{
+  return this->GPU->UsedExpansion;
+}
+
+double vtkPGIImageSpaceGIPass::LightingExpansionFactor(
+  int order, const double* red, const double* green, const double* blue, double tolerance)
+{
+  using namespace proxygi::sh;
+  const int n2 = order * order;
+  const double* light[3] = { red, green, blue };
+  const TripleProduct& tp = TripleProduct::Get(order);
+  // Directions: a Fibonacci set (blocker direction = receiver normal).
+  const int count = 256;
+  std::vector<std::array<double, 3>> dirs(count);
+  for (int k = 0; k < count; ++k)
+  {
+    const double z = 1.0 - (2.0 * k + 1.0) / count;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = 2.0 * Pi * std::fmod(k * 0.38196601125010515, 1.0);
+    dirs[k] = { r * std::cos(phi), r * std::sin(phi), z };
+  }
+  // The brightest unshadowed shading, the normaliser.
+  std::vector<double> h(n2), occluder(n2), product(n2), zh(order);
+  double brightest = 0.0;
+  for (const auto& d : dirs)
+  {
+    DiffuseTransfer(order, d[0], d[1], d[2], h.data());
+    for (int c = 0; c < 3; ++c)
+    {
+      double e = 0.0;
+      for (int i = 0; i < n2; ++i)
+      {
+        e += h[i] * light[c][i];
+      }
+      brightest = std::max(brightest, e);
+    }
+  }
+  if (!(brightest > 0.0))
+  {
+    return 1.0;
+  }
+  // Largest shading loss over directions for a blocker of sin(radius) alpha:
+  // H(d) . (L * cap), the light the cap takes away.
+  auto loss = [&](double alpha)
+  {
+    CapZonal(order, std::asin(std::min(1.0, alpha)), zh.data());
+    double worst = 0.0;
+    for (const auto& d : dirs)
+    {
+      RotateZonal(order, zh.data(), d[0], d[1], d[2], occluder.data());
+      DiffuseTransfer(order, d[0], d[1], d[2], h.data());
+      for (int c = 0; c < 3; ++c)
+      {
+        tp.Product(light[c], occluder.data(), product.data());
+        double e = 0.0;
+        for (int i = 0; i < n2; ++i)
+        {
+          e += h[i] * product[i];
+        }
+        worst = std::max(worst, std::fabs(e));
+      }
+    }
+    return worst / brightest;
+  };
+  // Bisection on alpha in [1e-3, 1]: the loss grows with the blocker.
+  double lo = 1e-3, hi = 1.0;
+  if (loss(lo) >= tolerance)
+  {
+    return 1.0 / lo;
+  }
+  if (loss(hi) < tolerance)
+  {
+    return 1.0;
+  }
+  for (int k = 0; k < 40; ++k)
+  {
+    const double mid = 0.5 * (lo + hi);
+    (loss(mid) < tolerance ? lo : hi) = mid;
+  }
+  return 1.0 / lo;
+}
+
+double vtkPGIImageSpaceGIPass::GetPassTime(int pass) const
+{
+  return pass >= 0 && pass < NumberOfPasses ? this->GPU->Times[pass] : 0.0;
+}
+
+void vtkPGIImageSpaceGIPass::GetReceiverBufferSize(int size[2]) const
+{
+  size[0] = this->GPU->LowWidth;
+  size[1] = this->GPU->LowHeight;
+}
+
+void vtkPGIImageSpaceGIPass::ReleaseGraphicsResources(vtkWindow* w)
+{
+  Internals& g = *this->GPU;
+  if (this->DelegatePass)
+  {
+    this->DelegatePass->ReleaseGraphicsResources(w);
+  }
+  g.Resources.ReleaseGraphicsResources(w);
+  g.ReleaseTargets(w);
+  if (g.FBO)
+  {
+    g.FBO->ReleaseGraphicsResources(w);
+    g.FBO = nullptr;
+  }
+  g.Downsample.reset();
+  g.Exp.reset();
+  g.Light.reset();
+  g.Upsample.reset();
+  g.ProgramOrder = 0;
+  if (g.ProxyAlbedo)
+  {
+    g.ProxyAlbedo->ReleaseGraphicsResources(w);
+    g.ProxyAlbedo = nullptr;
+  }
+  g.AlbedoDirty = true;
+  g.Cube->ReleaseGraphicsResources();
+  g.CubeVAO->ReleaseGraphicsResources();
+  g.CubeProgram = 0;
+  g.Window = nullptr;
+  g.HaveLight = false;
+  g.BlockersSet = false;
+  this->Superclass::ReleaseGraphicsResources(w);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPGIImageSpaceGIPass::PreReplaceShaderValues(
+  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
+{
+  if (vtkOpenGLPolyDataMapper::SafeDownCast(mapper))
+  {
+    // After VTK's lighting, which defines the position and normal.
+    vtkShaderProgram::Substitute(
+      fragmentShader, "//VTK::Light::Impl", "//VTK::Light::Impl\n//PGI::Receiver::Impl\n", false);
+  }
+  return true;
+}
+
+bool vtkPGIImageSpaceGIPass::PostReplaceShaderValues(
+  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
+{
+  if (vtkOpenGLPolyDataMapper::SafeDownCast(mapper))
+  {
+    const bool receiver = fragmentShader.find("vertexVC") != std::string::npos &&
+      fragmentShader.find("normalVCVSOutput") != std::string::npos;
+    const bool albedo = fragmentShader.find("diffuseColor") != std::string::npos;
+    std::string code = pgiISReceiverFS;
+    vtkShaderProgram::Substitute(code, "PGI_RECEIVER", receiver ? "1" : "0");
+    vtkShaderProgram::Substitute(code, "PGI_ALBEDO", albedo ? "1" : "0");
+    vtkShaderProgram::Substitute(fragmentShader, "//PGI::Receiver::Impl", code, false);
+  }
+  return true;
+}
+
+bool vtkPGIImageSpaceGIPass::SetShaderParameters(
+  vtkShaderProgram*, vtkAbstractMapper* mapper, vtkProp*, vtkOpenGLVertexArrayObject*)
+{
+  if (this->GPU->FBO)
+  {
+    this->GPU->FBO->ActivateDrawBuffers(vtkOpenGLPolyDataMapper::SafeDownCast(mapper) ? 4 : 1);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPGIImageSpaceGIPass::GetVisibilityBuffer(vtkFloatArray* visibility, vtkFloatArray* mask)
+{
+  Internals& g = *this->GPU;
+  if (!g.HaveFrame || !g.Window || !visibility)
+  {
+    return false;
+  }
+  g.Window->MakeCurrent();
+  const int n2 = g.LightOrder * g.LightOrder;
+  const std::size_t texels = static_cast<std::size_t>(g.LowWidth) * g.LowHeight;
+  std::vector<float> data(4 * texels);
+  visibility->SetNumberOfComponents(n2);
+  visibility->SetNumberOfTuples(static_cast<vtkIdType>(texels));
+  vtkOpenGLState* ostate = g.Window->GetState();
+  ostate->PushFramebufferBindings();
+  g.FBO->Bind();
+  auto read = [&](vtkTextureObject* texture)
+  {
+    g.FBO->AddColorAttachment(0, texture);
+    g.FBO->ActivateReadBuffer(0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, g.LowWidth, g.LowHeight, GL_RGBA, GL_FLOAT, data.data());
+  };
+  for (int k = 0; k < g.Targets; ++k)
+  {
+    read(g.Vis[k]);
+    for (std::size_t t = 0; t < texels; ++t)
+    {
+      for (int c = 0; c < 4 && 4 * k + c < n2; ++c)
+      {
+        visibility->SetTypedComponent(static_cast<vtkIdType>(t), 4 * k + c, data[4 * t + c]);
+      }
+    }
+  }
+  if (mask)
+  {
+    read(g.RNormal);
+    mask->SetNumberOfComponents(1);
+    mask->SetNumberOfTuples(static_cast<vtkIdType>(texels));
+    for (std::size_t t = 0; t < texels; ++t)
+    {
+      mask->SetValue(static_cast<vtkIdType>(t), data[4 * t + 3] > 0.5f ? 1.0f : 0.0f);
+    }
+  }
+  g.FBO->RemoveColorAttachments(1);
+  ostate->PopFramebufferBindings();
+  return glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
+void vtkPGIImageSpaceGIPass::SetIndirectUniforms(vtkShaderProgram* program, float planeTolerance)
+{
+  Internals& g = *this->GPU;
+  const bool indirect = this->Indirect && this->Shadows && !g.Response.empty();
+  program->SetUniformf("pgiPlaneTolerance", planeTolerance);
+  program->SetUniformi("pgiIndirect", indirect ? 1 : 0);
+  program->SetUniformf("pgiIndirectExpansion", static_cast<float>(this->IndirectExpansionFactor));
+  if (indirect)
+  {
+    program->SetUniform3fv(
+      "pgiResponse", static_cast<int>(g.Response.size() / 3), g.Response.data());
+  }
+  std::vector<float> albedos(3 * proxygi::gpu::MaxPlanes, 0.0f);
+  for (std::size_t k = 0; k < this->PlaneAlbedos.size() && k < albedos.size(); ++k)
+  {
+    albedos[k] = static_cast<float>(this->PlaneAlbedos[k]);
+  }
+  program->SetUniform3fv("pgiPlaneAlbedo", proxygi::gpu::MaxPlanes, albedos.data());
+}
+
+void vtkPGIImageSpaceGIPass::Splat(vtkOpenGLRenderWindow* window, const std::string& vs,
+  const std::string& fs, double expansion, float planeTolerance, const float wcdc[16], int proxies,
+  bool albedo)
+{
+  Internals& g = *this->GPU;
+  vtkOpenGLState* ostate = window->GetState();
+  vtkShaderProgram* program =
+    window->GetShaderCache()->ReadyShaderProgram(vs.c_str(), fs.c_str(), "");
+  if (!program)
+  {
+    vtkErrorMacro("A splat shader did not compile.");
+    return;
+  }
+  if (program->GetHandle() != g.CubeProgram)
+  {
+    g.CubeVAO->ShaderProgramChanged();
+    g.CubeProgram = program->GetHandle();
+  }
+  if (g.Cube->GetHandle() == 0)
+  {
+    g.Cube->Upload(CubeTriangles(), vtkOpenGLBufferObject::ArrayBuffer);
+  }
+  g.Resources.Bind(program);
+  this->SetIndirectUniforms(program, planeTolerance);
+  g.RPosition->Activate();
+  g.RNormal->Activate();
+  program->SetUniformi("pgiReceiverPosition", g.RPosition->GetTextureUnit());
+  program->SetUniformi("pgiReceiverNormal", g.RNormal->GetTextureUnit());
+  if (albedo && g.ProxyAlbedo)
+  {
+    g.ProxyAlbedo->Activate();
+    program->SetUniformi("pgiProxyAlbedo", g.ProxyAlbedo->GetTextureUnit());
+  }
+  program->SetUniformMatrix4x4("pgiWCDC", const_cast<float*>(wcdc));
+  program->SetUniformf("pgiExpansion", static_cast<float>(expansion));
+  g.CubeVAO->Bind();
+  g.CubeVAO->AddAttributeArray(program, g.Cube, "pgiCorner", 0, 12, VTK_FLOAT, 3, false);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+  ostate->vtkglEnable(GL_CULL_FACE);
+  ostate->vtkglCullFace(GL_FRONT);
+  // Boxes crossing the near or far plane are not clipped there.
+  glEnable(GL_DEPTH_CLAMP);
+  glDrawArraysInstanced(GL_TRIANGLES, 0, 36, proxies);
+  glDisable(GL_DEPTH_CLAMP);
+  ostate->vtkglCullFace(GL_BACK);
+  ostate->vtkglDisable(GL_CULL_FACE);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglBlendFuncSeparate(
+    GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  g.CubeVAO->Release();
+  if (albedo && g.ProxyAlbedo)
+  {
+    g.ProxyAlbedo->Deactivate();
+  }
+  g.RPosition->Deactivate();
+  g.RNormal->Deactivate();
+  g.Resources.Unbind();
+}
+
+//------------------------------------------------------------------------------
+void vtkPGIImageSpaceGIPass::Render(const vtkRenderState* s)
+{
+  vtkOpenGLClearErrorMacro();
+  this->NumberOfRenderedProps = 0;
+  Internals& g = *this->GPU;
+  vtkRenderer* ren = s->GetRenderer();
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!this->DelegatePass || !window)
+  {
+    vtkWarningMacro("No delegate pass or no OpenGL window: nothing rendered.");
+    return;
+  }
+  vtkOpenGLState* ostate = window->GetState();
+  if (g.Window != window)
+  {
+    if (g.Window)
+    {
+      this->ReleaseGraphicsResources(g.Window);
+    }
+    g.Window = window;
+  }
+
+  int x = 0, y = 0, w = 0, h = 0;
+  if (vtkFrameBufferObjectBase* target = s->GetFrameBuffer())
+  {
+    target->GetLastSize(w, h);
+  }
+  else
+  {
+    ren->GetTiledSizeAndOrigin(&w, &h, &x, &y);
+  }
+  const int order = this->Order, n2 = order * order;
+  const int scale = this->ReceiverScale;
+
+  // Inputs: the light at this order, the blockers.
+  auto plainRender = [&](const std::string& why)
+  {
+    this->Status = "image-space GI off: " + why;
+    this->DelegatePass->Render(s);
+    this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
+  };
+  if (!g.Resources.SetOrder(window, order))
+  {
+    vtkErrorMacro("Could not upload the SH tables of order " << order << ".");
+    plainRender("no SH tables");
+    return;
+  }
+  vtkNew<vtkPGILighting> defaultLighting;
+  vtkPGILighting* lighting = this->Lighting ? this->Lighting : defaultLighting.Get();
+  const vtkMTimeType lightingTime = this->Lighting ? this->Lighting->GetMTime() : 0;
+  if (!g.HaveLight || g.LightOrder != order || g.LightingTime != lightingTime)
+  {
+    const proxygi::EnvironmentMap* environment = nullptr;
+    std::string error;
+    if (!lighting->GetEnvironment(environment, error))
+    {
+      vtkErrorMacro("Bad environment: " << error);
+      plainRender("bad environment");
+      return;
+    }
+    std::vector<double> lr(n2), lg(n2), lb(n2);
+    environment->ProjectSH(order, lr.data(), lg.data(), lb.data());
+    g.Resources.SetLight(lr.data(), lg.data(), lb.data());
+    g.LightSH.assign(lr.begin(), lr.end());
+    g.LightSH.insert(g.LightSH.end(), lg.begin(), lg.end());
+    g.LightSH.insert(g.LightSH.end(), lb.begin(), lb.end());
+    g.ResponseDirty = true;
+    g.LightExpansionTolerance = 0.0; // recomputed below when needed
+    g.LightOrder = order;
+    g.LightingTime = lightingTime;
+    g.HaveLight = true;
+  }
+  const vtkMTimeType proxiesTime = this->Proxies ? this->Proxies->GetMTime() : 0;
+  if (!g.BlockersSet || proxiesTime != g.ProxiesTime || g.Planes != this->BlockerPlanes)
+  {
+    std::string error;
+    if (!proxygi::gpu::ReadProxies(this->Proxies, g.Spheres, error))
+    {
+      vtkErrorMacro("Proxies ignored: " << error << ".");
+    }
+    std::vector<float> planes(this->BlockerPlanes.begin(), this->BlockerPlanes.end());
+    g.Resources.SetBlockers(g.Spheres, planes);
+    g.ProxiesTime = proxiesTime;
+    g.Planes = this->BlockerPlanes;
+    g.BlockersSet = true;
+    g.ResponseDirty = true;
+    g.AlbedoDirty = true;
+  }
+  // Indirect: the proxies' albedo (as the CPU filter reads it, leaves only)
+  // and the secondary lights' response (SecondaryLights, planes included).
+  const std::string albedoKey =
+    std::string(this->ProxyAlbedoArrayName ? this->ProxyAlbedoArrayName : "") + " " +
+    std::to_string(this->DefaultProxyAlbedo[0]) + " " +
+    std::to_string(this->DefaultProxyAlbedo[1]) + " " + std::to_string(this->DefaultProxyAlbedo[2]);
+  if (this->Indirect && (g.AlbedoDirty || albedoKey != g.AlbedoKey))
+  {
+    g.Albedos.clear();
+    vtkDataArray* level =
+      this->Proxies ? this->Proxies->GetPointData()->GetArray("Level") : nullptr;
+    const vtkIdType count =
+      g.Spheres.empty() || !this->Proxies ? 0 : this->Proxies->GetNumberOfPoints();
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      if (level && level->GetTuple1(i) != 0.0)
+      {
+        continue;
+      }
+      double albedo[3];
+      proxygi::AlbedoOf(
+        this->Proxies, this->ProxyAlbedoArrayName, i, this->DefaultProxyAlbedo, albedo);
+      g.Albedos.insert(
+        g.Albedos.end(), { float(albedo[0]), float(albedo[1]), float(albedo[2]), 1.0f });
+    }
+    const int spheres = static_cast<int>(g.Spheres.size() / 4);
+    const int width = std::max(1, std::min(spheres, 1024)); // GIResources' layout
+    const int rows = std::max(1, (spheres + width - 1) / width);
+    g.Albedos.resize(4 * static_cast<std::size_t>(width) * rows, 0.0f);
+    if (g.ProxyAlbedo)
+    {
+      g.ProxyAlbedo->ReleaseGraphicsResources(window);
+    }
+    g.ProxyAlbedo = vtkSmartPointer<vtkTextureObject>::New();
+    g.ProxyAlbedo->SetContext(window);
+    g.ProxyAlbedo->SetMinificationFilter(vtkTextureObject::Nearest);
+    g.ProxyAlbedo->SetMagnificationFilter(vtkTextureObject::Nearest);
+    g.ProxyAlbedo->Create2DFromRaw(width, rows, 4, VTK_FLOAT, g.Albedos.data());
+    g.AlbedoDirty = false;
+    g.AlbedoKey = albedoKey;
+  }
+  if (this->Indirect && (g.ResponseDirty || g.Response.size() != 3 * static_cast<std::size_t>(n2)))
+  {
+    proxygi::Blockers planes;
+    for (std::size_t k = 0; k < this->BlockerPlanes.size() / 6; ++k)
+    {
+      const float origin[3] = { float(this->BlockerPlanes[6 * k]),
+        float(this->BlockerPlanes[6 * k + 1]), float(this->BlockerPlanes[6 * k + 2]) };
+      const float normal[3] = { float(this->BlockerPlanes[6 * k + 3]),
+        float(this->BlockerPlanes[6 * k + 4]), float(this->BlockerPlanes[6 * k + 5]) };
+      planes.AddPlane(origin, normal);
+    }
+    const proxygi::SecondaryLights lights(
+      order, &g.LightSH[0], &g.LightSH[n2], &g.LightSH[2 * n2], &planes);
+    g.Response.resize(3 * n2);
+    for (int i = 0; i < n2; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        g.Response[3 * i + c] = lights.Response[c * n2 + i];
+      }
+    }
+    g.ResponseDirty = false;
+  }
+  proxygi::gpu::KernelSettings settings;
+  settings.MinBlockerAngle = this->MinBlockerAngle;
+  settings.SelfShadowRules = this->SelfShadowRules;
+  settings.HybridMaxNorm = this->HybridMaxNorm;
+  settings.RangeTolerance = this->RangeTolerance;
+  g.Resources.SetSettings(settings);
+  const int proxies = static_cast<int>(g.Spheres.size() / 4);
+  const bool indirect = this->Indirect && this->Shadows;
+  if (this->AutomaticExpansionFactor && g.LightExpansionTolerance != this->ExpansionTolerance)
+  {
+    std::vector<double> lr(n2), lg(n2), lb(n2);
+    const proxygi::EnvironmentMap* environment = nullptr;
+    std::string error;
+    if (lighting->GetEnvironment(environment, error))
+    {
+      environment->ProjectSH(order, lr.data(), lg.data(), lb.data());
+      g.LightExpansion =
+        LightingExpansionFactor(order, lr.data(), lg.data(), lb.data(), this->ExpansionTolerance);
+      g.LightExpansionTolerance = this->ExpansionTolerance;
+    }
+  }
+  g.UsedExpansion = this->AutomaticExpansionFactor ? g.LightExpansion : this->ExpansionFactor;
+
+  // Targets for this size, scale and order.
+  const int lowW = (w + scale - 1) / scale, lowH = (h + scale - 1) / scale;
+  const int targets = (n2 + 3) / 4;
+  const int rows = ShadeRows(order);
+  const int lightTargets = (3 * rows + 3 + 3) / 4; // + indirect RGB
+  if (w != g.Width || h != g.Height || scale != g.Scale || targets != g.Targets ||
+    lightTargets != g.LightTargets || !g.GColor)
+  {
+    g.ReleaseTargets(window);
+    g.GColor = NewTarget(window, w, h, false);
+    g.GPosition = NewTarget(window, w, h, true);
+    g.GNormal = NewTarget(window, w, h, true);
+    g.GAlbedo = NewTarget(window, w, h, false);
+    g.GDepth = vtkSmartPointer<vtkTextureObject>::New();
+    g.GDepth->SetContext(window);
+    g.GDepth->AllocateDepth(w, h, vtkTextureObject::Float32);
+    g.RPosition = NewTarget(window, lowW, lowH, true);
+    g.RNormal = NewTarget(window, lowW, lowH, true);
+    for (int k = 0; k < targets; ++k)
+    {
+      g.Accum[k] = NewTarget(window, lowW, lowH, true);
+      g.Vis[k] = NewTarget(window, lowW, lowH, true);
+    }
+    for (int k = 0; k < lightTargets; ++k)
+    {
+      g.Lit[k] = NewTarget(window, lowW, lowH, true);
+    }
+    g.LightTargets = lightTargets;
+    g.IndirectSum = NewTarget(window, lowW, lowH, true);
+    g.Width = w;
+    g.Height = h;
+    g.LowWidth = lowW;
+    g.LowHeight = lowH;
+    g.Scale = scale;
+    g.Targets = targets;
+  }
+  if (!g.FBO)
+  {
+    g.FBO = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+    g.FBO->SetContext(window);
+  }
+
+  // Programs for this order.
+  if (g.ProgramOrder != order || g.ProgramFallback != this->Fallback || !g.Downsample)
+  {
+    const std::string library = proxygi::gpu::LibrarySource(order) + "#define PGI_SHADE_ROWS " +
+      std::to_string(rows) + "\n" + pgiISLibrary;
+    const std::string quadVS = vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader();
+    g.Downsample.reset(
+      new vtkOpenGLQuadHelper(window, quadVS.c_str(), pgiISReceiverDownsampleFS, ""));
+    std::string fs = pgiISExpFS;
+    vtkShaderProgram::Substitute(fs, "//PGI::Library", library);
+    vtkShaderProgram::Substitute(fs, "//PGI::Input::Dec", SamplerDeclarations("pgiAccum", n2));
+    vtkShaderProgram::Substitute(fs, "//PGI::Input::Impl", InputsTo("f", "pgiAccum", "px", n2));
+    vtkShaderProgram::Substitute(fs, "//PGI::Output::Impl", OutputsFrom("g", n2));
+    g.Exp.reset(new vtkOpenGLQuadHelper(window, quadVS.c_str(), fs.c_str(), ""));
+    fs = pgiISShadowedLightFS;
+    vtkShaderProgram::Substitute(fs, "//PGI::Library", library);
+    vtkShaderProgram::Substitute(fs, "//PGI::Input::Dec", SamplerDeclarations("pgiVis", n2));
+    vtkShaderProgram::Substitute(fs, "//PGI::Input::Impl", InputsTo("g", "pgiVis", "px", n2));
+    vtkShaderProgram::Substitute(fs, "//PGI::Output::Impl", OutputsFrom("c", 3 * rows + 3));
+    g.Light.reset(new vtkOpenGLQuadHelper(window, quadVS.c_str(), fs.c_str(), ""));
+    fs = pgiISUpsampleFS;
+    vtkShaderProgram::Substitute(fs, "//PGI::Library", library);
+    vtkShaderProgram::Substitute(
+      fs, "//PGI::Input::Dec", SamplerDeclarations("pgiLit", 3 * rows + 3));
+    vtkShaderProgram::Substitute(
+      fs, "//PGI::Input::Impl", InputsTo("v", "pgiLit", "s", 3 * rows + 3), true);
+    vtkShaderProgram::Substitute(
+      fs, "PGI_FALLBACK_EXACT", this->Fallback == ExactFallback ? "1" : "0", true);
+    g.Upsample.reset(new vtkOpenGLQuadHelper(window, quadVS.c_str(), fs.c_str(), ""));
+    g.SplatVS = pgiISSplatVS;
+    vtkShaderProgram::Substitute(g.SplatVS, "//PGI::Splat::Defines", "");
+    g.SplatFS = pgiISSplatShadowFS;
+    vtkShaderProgram::Substitute(g.SplatFS, "//PGI::Library", library);
+    vtkShaderProgram::Substitute(g.SplatFS, "//PGI::Output::Impl", OutputsFrom("f", n2));
+    g.SplatIndirectVS = pgiISSplatVS;
+    vtkShaderProgram::Substitute(
+      g.SplatIndirectVS, "//PGI::Splat::Defines", "#define PGI_SPLAT_ALBEDO\n");
+    g.SplatIndirectFS = pgiISSplatIndirectFS;
+    vtkShaderProgram::Substitute(g.SplatIndirectFS, "//PGI::Library", library);
+    g.ProgramOrder = order;
+    g.ProgramFallback = this->Fallback;
+  }
+  for (auto* q : { g.Downsample.get(), g.Exp.get(), g.Light.get(), g.Upsample.get() })
+  {
+    if (!q->Program || !q->Program->GetCompiled())
+    {
+      vtkErrorMacro("An image-space GI shader did not compile.");
+      g.ProgramOrder = 0;
+      plainRender("shader error");
+      return;
+    }
+  }
+
+  // Camera: world <-> view and world -> clip, column-major for GL.
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkMatrix4x4* modelView = camera->GetModelViewTransformMatrix();
+  vtkNew<vtkMatrix4x4> viewToWorld;
+  vtkMatrix4x4::Invert(modelView, viewToWorld);
+  float vcwc[16], wcdc[16], nvcwc[9];
+  ColumnMajor(viewToWorld, vcwc);
+  ColumnMajor(
+    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1), wcdc);
+  // Normals view -> world: the inverse transpose of viewToWorld's linear
+  // part, i.e. modelView's linear part transposed; column-major of that is
+  // modelView's rows.
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      nvcwc[3 * c + r] = static_cast<float>(modelView->GetElement(c, r));
+    }
+  }
+
+  // Positions rebuilt from view coordinates are off by a few float ulps of
+  // the scene's extent: receivers that close to a blocker plane are on it.
+  double far[2];
+  camera->GetClippingRange(far);
+  const double* eye = camera->GetPosition();
+  const float planeTolerance = static_cast<float>(
+    1e-5 * (far[1] + std::sqrt(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2])));
+
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point mark;
+  auto lap = [&](int pass)
+  {
+    if (this->MeasurePassTimes)
+    {
+      glFinish();
+      const Clock::time_point now = Clock::now();
+      g.Times[pass] = std::chrono::duration<double>(now - mark).count();
+      mark = now;
+    }
+    else
+    {
+      g.Times[pass] = 0.0;
+    }
+  };
+  if (this->MeasurePassTimes)
+  {
+    glFinish();
+    mark = Clock::now();
+  }
+
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthSaver(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cullSaver(ostate, GL_CULL_FACE);
+
+  // 1. Receiver setup: the scene into the full-resolution targets.
+  ostate->PushFramebufferBindings();
+  g.FBO->Bind();
+  g.FBO->AddColorAttachment(0, g.GColor);
+  g.FBO->AddColorAttachment(1, g.GPosition);
+  g.FBO->AddColorAttachment(2, g.GNormal);
+  g.FBO->AddColorAttachment(3, g.GAlbedo);
+  g.FBO->ActivateDrawBuffers(4);
+  g.FBO->AddDepthAttachment(g.GDepth);
+  g.FBO->StartNonOrtho(w, h);
+  ostate->vtkglViewport(0, 0, w, h);
+  ostate->vtkglScissor(0, 0, w, h);
+  this->PreRender(s);
+  this->DelegatePass->Render(s);
+  this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
+  this->PostRender(s);
+  g.FBO->RemoveColorAttachments(4);
+  g.FBO->RemoveDepthAttachment();
+
+  // ... and one sample per block into the receiver buffer.
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglDisable(GL_CULL_FACE);
+  ostate->vtkglViewport(0, 0, lowW, lowH);
+  ostate->vtkglScissor(0, 0, lowW, lowH);
+  g.FBO->AddColorAttachment(0, g.RPosition);
+  g.FBO->AddColorAttachment(1, g.RNormal);
+  g.FBO->ActivateDrawBuffers(2);
+  {
+    vtkShaderProgram* program = g.Downsample->Program;
+    window->GetShaderCache()->ReadyShaderProgram(program);
+    g.GPosition->Activate();
+    g.GNormal->Activate();
+    g.GDepth->Activate();
+    program->SetUniformi("pgiGPosition", g.GPosition->GetTextureUnit());
+    program->SetUniformi("pgiGNormal", g.GNormal->GetTextureUnit());
+    program->SetUniformi("pgiGDepth", g.GDepth->GetTextureUnit());
+    program->SetUniformi("pgiScale", scale);
+    program->SetUniformMatrix4x4("pgiVCToWC", vcwc);
+    program->SetUniformMatrix3x3("pgiNormalVCToWC", nvcwc);
+    g.Downsample->Render();
+    g.GPosition->Deactivate();
+    g.GNormal->Deactivate();
+    g.GDepth->Deactivate();
+  }
+  g.FBO->RemoveColorAttachments(2);
+  lap(ReceiverSetupPass);
+
+  // 2. Splatting: log visibility summed over the proxies' spheres of influence.
+  for (int k = 0; k < targets; ++k)
+  {
+    g.FBO->AddColorAttachment(k, g.Accum[k]);
+  }
+  g.FBO->ActivateDrawBuffers(targets);
+  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  if (this->Shadows && proxies > 0)
+  {
+    this->Splat(
+      window, g.SplatVS, g.SplatFS, g.UsedExpansion, planeTolerance, wcdc, proxies, false);
+  }
+  g.FBO->RemoveColorAttachments(targets);
+  lap(SplattingPass);
+
+  // 3. Exponentiation: the visibility vector per receiver.
+  for (int k = 0; k < targets; ++k)
+  {
+    g.FBO->AddColorAttachment(k, g.Vis[k]);
+  }
+  g.FBO->ActivateDrawBuffers(targets);
+  {
+    vtkShaderProgram* program = g.Exp->Program;
+    window->GetShaderCache()->ReadyShaderProgram(program);
+    g.Resources.Bind(program);
+    program->SetUniformf("pgiPlaneTolerance", planeTolerance);
+    g.RPosition->Activate();
+    g.RNormal->Activate();
+    program->SetUniformi("pgiReceiverPosition", g.RPosition->GetTextureUnit());
+    program->SetUniformi("pgiReceiverNormal", g.RNormal->GetTextureUnit());
+    for (int k = 0; k < targets; ++k)
+    {
+      g.Accum[k]->Activate();
+      program->SetUniformi(("pgiAccum" + std::to_string(k)).c_str(), g.Accum[k]->GetTextureUnit());
+    }
+    g.Exp->Render();
+    for (int k = 0; k < targets; ++k)
+    {
+      g.Accum[k]->Deactivate();
+    }
+    g.RPosition->Deactivate();
+    g.RNormal->Deactivate();
+    g.Resources.Unbind();
+  }
+  g.FBO->RemoveColorAttachments(targets);
+
+  // Indirect: each proxy's one-bounce light and solid angle, summed.
+  g.FBO->AddColorAttachment(0, g.IndirectSum);
+  g.FBO->ActivateDrawBuffers(1);
+  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  if (indirect && proxies > 0)
+  {
+    this->Splat(window, g.SplatIndirectVS, g.SplatIndirectFS, this->IndirectExpansionFactor,
+      planeTolerance, wcdc, proxies, true);
+  }
+  g.FBO->RemoveColorAttachments(1);
+  lap(IndirectPass);
+
+  // ... and the shadowed light M_L g, which is what gets interpolated.
+  for (int k = 0; k < lightTargets; ++k)
+  {
+    g.FBO->AddColorAttachment(k, g.Lit[k]);
+  }
+  g.FBO->ActivateDrawBuffers(lightTargets);
+  {
+    vtkShaderProgram* program = g.Light->Program;
+    window->GetShaderCache()->ReadyShaderProgram(program);
+    g.Resources.Bind(program);
+    this->SetIndirectUniforms(program, planeTolerance);
+    g.RNormal->Activate();
+    g.RPosition->Activate();
+    g.IndirectSum->Activate();
+    program->SetUniformi("pgiReceiverNormal", g.RNormal->GetTextureUnit());
+    program->SetUniformi("pgiReceiverPosition", g.RPosition->GetTextureUnit());
+    program->SetUniformi("pgiIndirectSum", g.IndirectSum->GetTextureUnit());
+    for (int k = 0; k < targets; ++k)
+    {
+      g.Vis[k]->Activate();
+      program->SetUniformi(("pgiVis" + std::to_string(k)).c_str(), g.Vis[k]->GetTextureUnit());
+    }
+    g.Light->Render();
+    for (int k = 0; k < targets; ++k)
+    {
+      g.Vis[k]->Deactivate();
+    }
+    g.IndirectSum->Deactivate();
+    g.RPosition->Deactivate();
+    g.RNormal->Deactivate();
+    g.Resources.Unbind();
+  }
+  g.FBO->RemoveColorAttachments(lightTargets);
+  ostate->PopFramebufferBindings();
+  lap(ExponentiationPass);
+
+  // 4. Upsampling and shading into the renderer's framebuffer.
+  ostate->vtkglViewport(x, y, w, h);
+  ostate->vtkglScissor(x, y, w, h);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  {
+    vtkShaderProgram* program = g.Upsample->Program;
+    window->GetShaderCache()->ReadyShaderProgram(program);
+    g.Resources.Bind(program);
+    this->SetIndirectUniforms(program, planeTolerance);
+    const bool albedoBound = indirect && g.ProxyAlbedo;
+    if (albedoBound)
+    {
+      g.ProxyAlbedo->Activate();
+      program->SetUniformi("pgiProxyAlbedo", g.ProxyAlbedo->GetTextureUnit());
+    }
+    vtkTextureObject* inputs[] = { g.GColor, g.GPosition, g.GNormal, g.GAlbedo, g.GDepth,
+      g.RPosition, g.RNormal };
+    const char* names[] = { "pgiGColor", "pgiGPosition", "pgiGNormal", "pgiGAlbedo", "pgiGDepth",
+      "pgiReceiverPosition", "pgiReceiverNormal" };
+    for (int k = 0; k < 7; ++k)
+    {
+      inputs[k]->Activate();
+      program->SetUniformi(names[k], inputs[k]->GetTextureUnit());
+    }
+    for (int k = 0; k < lightTargets; ++k)
+    {
+      g.Lit[k]->Activate();
+      program->SetUniformi(("pgiLit" + std::to_string(k)).c_str(), g.Lit[k]->GetTextureUnit());
+    }
+    program->SetUniformi("pgiScale", scale);
+    program->SetUniformi("pgiBilateral", this->Upsampling == Bilateral ? 1 : 0);
+    program->SetUniformi("pgiShadows", this->Shadows ? 1 : 0);
+    program->SetUniformf("pgiDepthEpsilon", static_cast<float>(this->DepthEpsilon));
+    program->SetUniformf("pgiNormalPower", static_cast<float>(this->NormalPower));
+    program->SetUniformf("pgiFallbackThreshold", static_cast<float>(this->FallbackThreshold));
+    program->SetUniformMatrix4x4("pgiVCToWC", vcwc);
+    program->SetUniformMatrix3x3("pgiNormalVCToWC", nvcwc);
+    program->SetUniformf("pgiExposure", static_cast<float>(this->Exposure));
+    program->SetUniformi("pgiSRGBOutput", this->SRGBOutput ? 1 : 0);
+    g.Upsample->Render();
+    if (albedoBound)
+    {
+      g.ProxyAlbedo->Deactivate();
+    }
+    for (int k = 0; k < lightTargets; ++k)
+    {
+      g.Lit[k]->Deactivate();
+    }
+    for (int k = 0; k < 7; ++k)
+    {
+      inputs[k]->Deactivate();
+    }
+    g.Resources.Unbind();
+  }
+  ostate->vtkglDepthFunc(GL_LEQUAL);
+  lap(UpsamplingPass);
+  g.HaveFrame = true;
+
+  std::ostringstream status;
+  status << "image-space GI: " << w << "x" << h << " pixels, receiver buffer 1/" << scale << " ("
+         << lowW << "x" << lowH << "), " << proxies << " proxies, "
+         << this->BlockerPlanes.size() / 6 << " planes, order " << order << ", "
+         << (this->Shadows ? "SHEXP shadows (HYB)" : "no shadows")
+         << (indirect ? ", indirect (averaged, expansion " +
+                  std::to_string(this->IndirectExpansionFactor) + ")"
+                      : "")
+         << ", expansion " << g.UsedExpansion
+         << (this->AutomaticExpansionFactor ? " (of the light)" : "") << ", "
+         << (this->Upsampling == Bilateral ? "bilateral" : "bilinear") << " upsampling";
+  this->Status = status.str();
+  vtkOpenGLCheckErrorMacro("failed after vtkPGIImageSpaceGIPass::Render");
+}

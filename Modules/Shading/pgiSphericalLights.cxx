@@ -1,0 +1,422 @@
+#include "pgiSphericalLights.h"
+
+#include "pgiEnvironmentShading.h"
+#include "pgiSHLightTables.h"
+#include "pgiSHTables.h"
+#include "pgiSHTripleProduct.h"
+#include "pgiSHZonal.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+
+namespace proxygi
+{
+
+namespace
+{
+// Below this angular radius a light's cap is evaluated at this size with its
+// radiance scaled to the same power: a vanishing cap is not resolved by the
+// difference of two exps in float.
+constexpr float MinLightTheta = 0.02f;
+} // namespace
+
+void SphericalLights::Add(float x, float y, float z, float r, int object)
+{
+  this->X.push_back(x);
+  this->Y.push_back(y);
+  this->Z.push_back(z);
+  this->R.push_back(r);
+  this->Object.push_back(object);
+}
+
+void SphericalLights::Finish()
+{
+  const std::size_t count = this->Count();
+  this->Intersects.assign(count * count, 0);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    for (std::size_t j = i + 1; j < count; ++j)
+    {
+      const float dx = this->X[i] - this->X[j], dy = this->Y[i] - this->Y[j],
+                  dz = this->Z[i] - this->Z[j], rr = this->R[i] + this->R[j];
+      const bool sameLevel = this->Level.empty() || this->Level[i] == this->Level[j];
+      if (this->Object[i] == this->Object[j] && sameLevel && dx * dx + dy * dy + dz * dz < rr * rr)
+      {
+        this->Intersects[i * count + j] = this->Intersects[j * count + i] = 1;
+      }
+    }
+  }
+}
+
+void LocalEmitters::Add(const double c[3], double r, const double rgb[3], bool point)
+{
+  this->X.push_back(float(c[0]));
+  this->Y.push_back(float(c[1]));
+  this->Z.push_back(float(c[2]));
+  this->R.push_back(point ? 0.0f : float(r));
+  this->Radiance.insert(this->Radiance.end(), { float(rgb[0]), float(rgb[1]), float(rgb[2]) });
+  this->Point.push_back(point ? 1 : 0);
+}
+
+ShadowedIndirect::ShadowedIndirect(
+  const SoftShadowSettings& settings, SphericalLightBlocking blocking)
+  : Settings(settings)
+  , Blocking(blocking)
+{
+  // Build the cached tables before the parallel loops.
+  sh::CapTables::Get(settings.Order);
+  sh::IndirectTables::Get(settings.Order);
+  sh::TripleProduct::Get(settings.Order);
+}
+
+bool ShadowedIndirect::ExitRadiance(const SphericalLights& lights, bool emitLights,
+  const LocalEmitters* locals, const Blockers* planes, const float p[3], const float n[3],
+  float rgb[3], SphericalLightScratch& s, float* contributions) const
+{
+  rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  if (contributions)
+  {
+    std::fill(contributions, contributions + lights.Count(), 0.0f);
+  }
+  const int order = this->Settings.Order, n2 = sh::NumCoefficients(order);
+  const sh::CapTables& caps = sh::CapTables::Get(order);
+  const sh::IndirectTables& tables = sh::IndirectTables::Get(order);
+  const float sinMin = std::sin(this->Settings.MinAngle);
+  const std::size_t count = lights.Count();
+  s.List.clear();
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    float c[3] = { lights.X[i], lights.Y[i], lights.Z[i] };
+    float r = lights.R[i];
+    if (!(r > 0.0f) || (this->Settings.SelfShadowRules && !ReplaceBlocker(p, n, c, r)))
+    {
+      continue;
+    }
+    const float d[3] = { c[0] - p[0], c[1] - p[1], c[2] - p[2] };
+    const float dist = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(dist > r) || r < sinMin * dist)
+    {
+      continue; // inside (rules off) or too small to resolve
+    }
+    s.List.push_back({ static_cast<int>(i), dist, std::asin(r / dist),
+      { d[0] / dist, d[1] / dist, d[2] / dist } });
+  }
+  const std::size_t lightEntries = s.List.size();
+  for (std::size_t k = 0; locals && k < locals->Count(); ++k)
+  {
+    const float d[3] = { locals->X[k] - p[0], locals->Y[k] - p[1], locals->Z[k] - p[2] };
+    const float dist = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const float r = locals->R[k];
+    if (!(dist > r) || (d[0] * n[0] + d[1] * n[1] + d[2] * n[2]) < -r)
+    {
+      continue; // inside the emitter, or wholly below the horizon
+    }
+    const float theta = std::max(MinLightTheta, std::asin(r / dist));
+    s.List.push_back(
+      { -1 - static_cast<int>(k), dist, theta, { d[0] / dist, d[1] / dist, d[2] / dist } });
+  }
+  if (s.List.empty())
+  {
+    return true;
+  }
+  // Sort keys: distance, or (per object) the object's nearest SL first.
+  using Seen = SphericalLightScratch::Seen;
+  std::vector<float>& objectKey = s.ObjectKey;
+  objectKey.resize(s.List.size());
+  for (std::size_t a = 0; a < s.List.size(); ++a)
+  {
+    objectKey[a] = s.List[a].Key;
+    if (this->Blocking == SphericalLightBlocking::PerObject && a < lightEntries)
+    {
+      const int object = lights.Object[s.List[a].Index];
+      for (std::size_t b = 0; b < lightEntries; ++b)
+      {
+        if (lights.Object[s.List[b].Index] == object)
+        {
+          objectKey[a] = std::min(objectKey[a], s.List[b].Key);
+        }
+      }
+    }
+  }
+  std::vector<std::size_t>& rank = s.Rank;
+  rank.resize(s.List.size());
+  for (std::size_t a = 0; a < rank.size(); ++a)
+  {
+    rank[a] = a;
+  }
+  std::sort(rank.begin(), rank.end(),
+    [&](std::size_t a, std::size_t b)
+    {
+      if (objectKey[a] != objectKey[b])
+      {
+        return objectKey[a] < objectKey[b];
+      }
+      if (s.List[a].Key != s.List[b].Key)
+      {
+        return s.List[a].Key < s.List[b].Key;
+      }
+      return s.List[a].Index < s.List[b].Index;
+    });
+  s.Sorted.resize(s.List.size());
+  for (std::size_t a = 0; a < rank.size(); ++a)
+  {
+    s.Sorted[a] = s.List[rank[a]];
+  }
+  s.List.swap(s.Sorted);
+
+  const std::size_t entries = s.List.size();
+  s.Logs.resize(entries * n2);
+  float zh[sh::MaxOrder];
+  for (std::size_t a = 0; a < entries; ++a)
+  {
+    caps.CapLog(s.List[a].Theta, zh);
+    sh::RotateScaledZonal(
+      order, zh, s.List[a].Dir[0], s.List[a].Dir[1], s.List[a].Dir[2], &s.Logs[a * n2]);
+  }
+  // Planes block every SL as 90-degree caps when they are in log space (else
+  // the light of the first pass carries them, and SLs sit above them).
+  float running[sh::MaxCoefficients];
+  sh::Fill(running, n2, 0.0f);
+  const bool planeLogs = planes && this->Settings.PlanesInLogSpace;
+  for (std::size_t k = 0; planeLogs && k < planes->Planes(); ++k)
+  {
+    const float* o = &planes->PlaneOrigin[3 * k];
+    const float* pn = &planes->PlaneNormal[3 * k];
+    const float height = (p[0] - o[0]) * pn[0] + (p[1] - o[1]) * pn[1] + (p[2] - o[2]) * pn[2];
+    if (height > 0.0f)
+    {
+      float v[sh::MaxCoefficients];
+      caps.CapLog(static_cast<float>(sh::CapTables::MaxAngle), zh);
+      sh::RotateScaledZonal(order, zh, -pn[0], -pn[1], -pn[2], v);
+      for (int t = 0; t < n2; ++t)
+      {
+        running[t] += v[t];
+      }
+    }
+  }
+  float h[sh::MaxCoefficients];
+  sh::DiffuseTransfer(order, n[0], n[1], n[2], h);
+  float before[sh::MaxCoefficients], after[sh::MaxCoefficients], expBefore[sh::MaxCoefficients],
+    expAfter[sh::MaxCoefficients];
+  bool ok = true;
+  // exp per blocker set (a bit per sorted entry; the planes are in every
+  // set): a set met again, such as the previous light's F + G, or F of a light
+  // whose intersecting partner came just before it, costs no second exp.
+  const bool cache = entries <= 64;
+  s.CacheKey.clear();
+  s.CacheExp.clear();
+  std::uint64_t runningMask = 0;
+  auto expOf = [&](const float* f, std::uint64_t key, float* out)
+  {
+    if (key == 0 && !planeLogs)
+    {
+      sh::SetConstant(order, 1.0f, out); // nothing blocks: exactly 1
+      return sh::Status::Ok;
+    }
+    for (std::size_t c = 0; cache && c < s.CacheKey.size(); ++c)
+    {
+      if (s.CacheKey[c] == key)
+      {
+        std::copy(&s.CacheExp[c * n2], &s.CacheExp[c * n2] + n2, out);
+        return sh::Status::Ok;
+      }
+    }
+    const sh::Status status = sh::Exp(order, f, out, this->Settings.Exp);
+    if (cache && status == sh::Status::Ok)
+    {
+      s.CacheKey.push_back(key);
+      s.CacheExp.insert(s.CacheExp.end(), out, out + n2);
+    }
+    return status;
+  };
+  for (std::size_t k = 0; k < entries; ++k)
+  {
+    const Seen& e = s.List[k];
+    const bool blocks = e.Index >= 0;
+    // Intersecting SLs of the same object do not block (eq. 23, section 6.2).
+    s.Excluded.clear();
+    if (blocks)
+    {
+      const char* row = &lights.Intersects[static_cast<std::size_t>(e.Index) * count];
+      for (std::size_t q = 0; q < k; ++q)
+      {
+        if (s.List[q].Index >= 0 && row[s.List[q].Index])
+        {
+          s.Excluded.push_back(static_cast<int>(q));
+        }
+      }
+    }
+    float lbar[3] = { 0, 0, 0 };
+    if (blocks && emitLights)
+    {
+      const float* radiance = &lights.Radiance[static_cast<std::size_t>(e.Index) * 3 * n2];
+      const float ratio = lights.ReflectionRatio.empty() ? 1.0f : lights.ReflectionRatio[e.Index];
+      for (int c = 0; c < 3; ++c)
+      {
+        lbar[c] = ratio * tables.SphericalLightRadiance(e.Theta, e.Dir, radiance + c * n2);
+      }
+    }
+    else if (!blocks)
+    {
+      const int l = -1 - e.Index;
+      // Same power as the true light: radiance times its solid angle.
+      const float omega = static_cast<float>(sh::CapSolidAngle(e.Theta));
+      const float scale = locals->Point[l]
+        ? 1.0f / (e.Key * e.Key * omega)
+        : static_cast<float>(sh::CapSolidAngle(std::asin(locals->R[l] / e.Key))) / omega;
+      for (int c = 0; c < 3; ++c)
+      {
+        lbar[c] = scale * locals->Radiance[3 * l + c];
+      }
+    }
+    const bool emits = lbar[0] > 0.0f || lbar[1] > 0.0f || lbar[2] > 0.0f;
+    if (emits)
+    {
+      for (int t = 0; t < n2; ++t)
+      {
+        before[t] = running[t];
+      }
+      std::uint64_t beforeMask = runningMask;
+      for (int q : s.Excluded)
+      {
+        for (int t = 0; t < n2; ++t)
+        {
+          before[t] -= s.Logs[q * n2 + t];
+        }
+        beforeMask &= cache ? ~(std::uint64_t(1) << q) : 0;
+      }
+      for (int t = 0; t < n2; ++t)
+      {
+        after[t] = before[t] + s.Logs[k * n2 + t];
+      }
+      const std::uint64_t afterMask =
+        blocks && cache ? beforeMask | (std::uint64_t(1) << k) : ~std::uint64_t(0);
+      sh::Status status = expOf(before, cache ? beforeMask : ~std::uint64_t(0), expBefore);
+      if (status == sh::Status::Ok)
+      {
+        // A light that does not block has no set of its own: no caching.
+        status = blocks && cache ? expOf(after, afterMask, expAfter)
+                                 : sh::Exp(order, after, expAfter, this->Settings.Exp);
+      }
+      if (status == sh::Status::Ok)
+      {
+        float v[sh::MaxCoefficients];
+        for (int t = 0; t < n2; ++t)
+        {
+          v[t] = expBefore[t] - expAfter[t];
+        }
+        const float vbar = std::max(0.0f, sh::Dot(n2, h, v));
+        for (int c = 0; c < 3; ++c)
+        {
+          const float share = std::max(0.0f, lbar[c]) * vbar;
+          rgb[c] += share;
+          if (contributions && blocks)
+          {
+            contributions[e.Index] += share;
+          }
+        }
+      }
+      else
+      {
+        ok = false;
+      }
+    }
+    if (blocks)
+    {
+      runningMask |= cache ? std::uint64_t(1) << k : 0;
+      for (int t = 0; t < n2; ++t)
+      {
+        running[t] += s.Logs[k * n2 + t];
+      }
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    if (!std::isfinite(rgb[c]))
+    {
+      rgb[c] = 0.0f;
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+long ShadowedIndirect::UpdateRadiance(SphericalLights& lights, const SphericalLightSamples& samples,
+  const Blockers& blockers, const EnvironmentShading& environment,
+  const LocalEmitters* locals) const
+{
+  const int order = this->Settings.Order, n2 = sh::NumCoefficients(order);
+  const int m = samples.Directions;
+  const std::size_t count = lights.Count();
+  lights.Radiance.assign(count * 3 * n2, 0.0f);
+  const SoftShadows shadows(this->Settings);
+  const sh::TripleProduct& product = sh::TripleProduct::Get(order);
+  std::atomic<long> failures(0);
+  const bool anyLocal = locals && locals->Count() > 0;
+  vtkSMPTools::For(0, static_cast<vtkIdType>(count),
+    [&](vtkIdType first, vtkIdType last)
+    {
+      SphericalLightScratch scratch;
+      float g[sh::MaxCoefficients], light[3][sh::MaxCoefficients];
+      long localFailures = 0;
+      for (vtkIdType i = first; i < last; ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          sh::Fill(light[c], n2, 0.0f);
+        }
+        for (int j = 0; j < m; ++j)
+        {
+          const std::size_t at = (static_cast<std::size_t>(i) * m + j) * 3;
+          const float* pn = &samples.Normal[at];
+          if (pn[0] == 0.0f && pn[1] == 0.0f && pn[2] == 0.0f)
+          {
+            continue; // no sample: the SL emits nothing in this direction
+          }
+          const float* pp = &samples.Position[at];
+          sh::Status status;
+          shadows.Visibility(pp, pn, blockers, g, status);
+          if (status != sh::Status::Ok)
+          {
+            ++localFailures;
+            continue;
+          }
+          float rgb[3];
+          environment.Shade(pn, g, rgb);
+          if (anyLocal)
+          {
+            float lit[3];
+            if (!this->ExitRadiance(lights, false, locals, &blockers, pp, pn, lit, scratch))
+            {
+              ++localFailures;
+            }
+            for (int c = 0; c < 3; ++c)
+            {
+              rgb[c] += lit[c];
+            }
+          }
+          const float* y = &samples.Voronoi[static_cast<std::size_t>(j) * n2];
+          for (int c = 0; c < 3; ++c)
+          {
+            for (int t = 0; t < n2; ++t)
+            {
+              light[c][t] += rgb[c] * y[t];
+            }
+          }
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          const std::size_t at = (static_cast<std::size_t>(i) * 3 + c) * n2;
+          product.Product(light[c], &samples.AlbedoSH[at], &lights.Radiance[at]);
+        }
+      }
+      failures += localFailures;
+    });
+  return failures.load();
+}
+
+} // namespace proxygi
