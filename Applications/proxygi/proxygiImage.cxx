@@ -22,6 +22,12 @@ unsigned char ToSRGB8(double v)
   return static_cast<unsigned char>(std::lround(255.0 * s));
 }
 
+double FromSRGB8(unsigned char v)
+{
+  const double s = v / 255.0;
+  return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+}
+
 double AutoExposure(vtkImageData* radiance)
 {
   vtkDataArray* rgb = radiance->GetPointData()->GetScalars();

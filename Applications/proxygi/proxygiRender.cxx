@@ -50,6 +50,14 @@ Embree reference of the same scene (computed once, cached).
   --exposure E        tone-mapping scale (default: 95th percentile to 0.8)
   --no-error          skip the reference and the error
   --vtp PREFIX        also write each object's per-vertex arrays to PREFIX-<name>.vtp
+  --mode M            vertex (default): per-vertex radiance from the CPU filter;
+                      image-space: the GPU image-space pass (receiver buffer,
+                      splatting, HYB exp, indirect, bilateral upsampling), with
+                      per-pass times
+  --scale N           image-space receiver buffer at 1/N of the window (1, 2, 4, 8; 2)
+  --pixel-error       also compare the picture per pixel with Embree's image
+                      (always on in image-space mode)
+  --pixel-reference-spp N   samples per pixel of that image (default 256)
 
 proxygi render --analytic [options]
 
@@ -86,7 +94,7 @@ int RunRender(const Args& args)
   {
     return RunRenderAnalytic(args);
   }
-  return RunRenderScene(args, Positional(args, { "--no-error", "--analytic" }));
+  return RunRenderScene(args, Positional(args, { "--no-error", "--analytic", "--pixel-error" }));
 }
 
 int RunRenderAnalytic(const Args& args)
