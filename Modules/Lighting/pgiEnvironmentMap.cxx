@@ -323,18 +323,20 @@ void EnvironmentMap::ProjectSH(int order, double* red, double* green, double* bl
     }
   }
   std::vector<double> nodes, weights, basis(n2), zInt(n2), rowCos(3 * order), rowSin(3 * order);
+  // The rule on [0, 1] once, mapped onto each row's z interval.
+  sh::GaussLegendre(8, 0.0, 1.0, nodes, weights);
   for (int j = 0; j < h; ++j)
   {
     // z integrals of y_l|m| at phi = 0 (carries K_lm, sqrt(2), sin^m theta).
-    sh::GaussLegendre(8, std::cos(Pi * (j + 1) / h), std::cos(Pi * j / h), nodes, weights);
+    const double z0 = std::cos(Pi * (j + 1) / h), z1 = std::cos(Pi * j / h);
     std::fill(zInt.begin(), zInt.end(), 0.0);
     for (std::size_t q = 0; q < nodes.size(); ++q)
     {
-      const double z = nodes[q], s = std::sqrt(std::max(0.0, 1.0 - z * z));
+      const double z = z0 + (z1 - z0) * nodes[q], s = std::sqrt(std::max(0.0, 1.0 - z * z));
       sh::EvaluateBasis(order, s, 0.0, z, basis.data());
       for (int i = 0; i < n2; ++i)
       {
-        zInt[i] += weights[q] * basis[i];
+        zInt[i] += (z1 - z0) * weights[q] * basis[i];
       }
     }
     std::fill(rowCos.begin(), rowCos.end(), 0.0);
