@@ -45,6 +45,8 @@ Embree reference of the same scene (computed once, cached).
   --spheres N         proxy spheres per mesh (default 64)
   --indirect M        one-bounce light: shadowed (default; spherical lights,
                       Guerrero 2008), unshadowed (Sloan 2007), off
+  --hierarchy DEG     hierarchy cuts: receiver clusters use the cut whose
+                      spheres subtend less than DEG (default 25; 0 = all leaves)
   --size WxH          image size (default: the scene's)
   --reference-spp N   samples per vertex of the reference (default 1024)
   --exposure E        tone-mapping scale (default: 95th percentile to 0.8)

@@ -63,6 +63,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   const std::string methodName = Option(args, "--method", "HYB");
   const std::string indirectName = Option(args, "--indirect", "shadowed");
   const std::string mode = Option(args, "--mode", "vertex");
+  const double hierarchyAngle = NumberOption(args, "--hierarchy", 25.0, ok);
   const int receiverScale = static_cast<int>(NumberOption(args, "--scale", 2, ok));
   const int pixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
   if ((mode != "vertex" && mode != "image-space") ||
@@ -138,6 +139,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     gi->SetOrder(order);
     gi->SetExpMethod(methods.at(methodName));
     gi->SetIndirectMode(indirectModes.at(indirectName));
+    gi->SetHierarchyAngle(hierarchyAngle);
     gi->Update();
     shaded.push_back(gi->GetOutput());
     if (shaded.size() == 1)
