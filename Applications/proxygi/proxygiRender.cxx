@@ -60,6 +60,7 @@ Embree reference of the same scene (computed once, cached).
   --pixel-error       also compare the picture per pixel with Embree's image
                       (always on in image-space mode)
   --pixel-reference-spp N   samples per pixel of that image (default 256)
+  --reference-png FILE      write that image, tone-mapped like the render
 
 proxygi render --analytic [options]
 

@@ -319,6 +319,11 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       writer->SetInputData(truth);
       writer->Write();
     }
+    const std::string referencePNG = Option(args, "--reference-png", "");
+    if (!referencePNG.empty() && WriteTonemappedPNG(truth, exposure, referencePNG))
+    {
+      std::printf("wrote %s (Embree's image, same exposure)\n", referencePNG.c_str());
+    }
     vtkNew<vtkFloatArray> depth;
     window->GetZbufferData(0, 0, scene.Size[0] - 1, scene.Size[1] - 1, depth);
     grab->Modified();
