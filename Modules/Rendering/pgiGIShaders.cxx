@@ -3,6 +3,7 @@
 #include "pgiGIComputeFS.h"
 #include "pgiGIHarnessVS.h"
 #include "pgiGILibrary.h"
+#include "pgiISLibrary.h"
 #include "pgiSHBasisGLSL.h"
 
 #include "pgiSHBasis.h"
@@ -140,6 +141,11 @@ std::string LibrarySource(int order)
   return defines.str() + pgiSHBasisGLSL + "\n" + library;
 }
 
+std::string IndirectLibrarySource()
+{
+  return pgiISLibrary;
+}
+
 //------------------------------------------------------------------------------
 struct GIResources::Internals
 {
@@ -153,11 +159,17 @@ struct GIResources::Internals
   int CapResolution = 0, OLResolution = 0;
   float CapThetaScale = 0.0f, OLScale = 0.0f;
   std::vector<float> TransferZH;
-  std::vector<float> Light; // n2 x 3
-  std::vector<float> LightMatrixData;
+  std::vector<float> Light;      // n2 x 3
+  std::vector<float> LightAbove; // n2 x 3, the light above the planes
+  std::vector<float> LightMatrixData; // 2 n2 rows of n2 RGBA: L, then the light above
+  bool AboveSet = false;
   bool LightDirty = false;
   std::vector<float> Spheres, Planes;
   bool BlockersDirty = true;
+  // AnalyticLightTables' lobe table (local lights), built on demand.
+  bool WantLobes = false;
+  vtkSmartPointer<vtkTextureObject> Lobes;
+  int LobeThetaResolution = 0, LobePhiResolution = 0;
   int ProxyTextureWidth = 1;
   KernelSettings Settings;
 };
@@ -224,39 +236,94 @@ bool GIResources::SetOrder(vtkOpenGLRenderWindow* window, int order)
   }
   d.LightMatrix = nullptr;
   d.Light.assign(3 * order * order, 0.0f);
-  d.LightMatrixData.assign(4 * order * order * order * order, 0.0f);
+  d.LightAbove.assign(3 * order * order, 0.0f);
+  d.LightMatrixData.assign(2 * 4 * order * order * order * order, 0.0f);
+  d.AboveSet = false;
   d.LightDirty = true;
   d.BlockersDirty = true;
+  d.Lobes = nullptr;
   return d.CapLog && d.OL && d.CapVis && d.DTable;
 }
 
-void GIResources::SetLight(const double* red, const double* green, const double* blue)
+namespace
 {
-  Internals& d = *this->Impl;
-  const int n2 = d.Order * d.Order;
-  if (n2 == 0)
-  {
-    return;
-  }
+// One light's vector and product matrix into the rows of light `which`.
+void StoreLight(int order, const double* red, const double* green, const double* blue,
+  std::vector<float>& vector, std::vector<float>& matrix, int which)
+{
+  const int n2 = order * order;
   const double* channels[3] = { red, green, blue };
-  const sh::TripleProduct& tp = sh::TripleProduct::Get(d.Order);
+  const sh::TripleProduct& tp = sh::TripleProduct::Get(order);
   std::vector<double> m(n2 * n2);
+  const std::size_t first = 4 * static_cast<std::size_t>(which) * n2 * n2;
   for (int c = 0; c < 3; ++c)
   {
     for (int i = 0; i < n2; ++i)
     {
-      d.Light[3 * i + c] = static_cast<float>(channels[c][i]);
+      vector[3 * i + c] = static_cast<float>(channels[c][i]);
     }
     tp.ProductMatrix(channels[c], m.data());
     for (int i = 0; i < n2; ++i)
     {
       for (int j = 0; j < n2; ++j)
       {
-        d.LightMatrixData[4 * (i * n2 + j) + c] = static_cast<float>(m[i * n2 + j]);
+        matrix[first + 4 * (i * n2 + j) + c] = static_cast<float>(m[i * n2 + j]);
       }
     }
   }
+}
+} // namespace
+
+void GIResources::SetLight(const double* red, const double* green, const double* blue)
+{
+  Internals& d = *this->Impl;
+  if (d.Order == 0)
+  {
+    return;
+  }
+  StoreLight(d.Order, red, green, blue, d.Light, d.LightMatrixData, 0);
+  if (!d.AboveSet)
+  {
+    StoreLight(d.Order, red, green, blue, d.LightAbove, d.LightMatrixData, 1);
+  }
   d.LightDirty = true;
+}
+
+void GIResources::SetLightAbovePlanes(const double* red, const double* green, const double* blue)
+{
+  Internals& d = *this->Impl;
+  if (d.Order == 0)
+  {
+    return;
+  }
+  if (!red || !green || !blue)
+  {
+    // Back to L: copy light 0's rows.
+    const std::size_t half = d.LightMatrixData.size() / 2;
+    std::copy(d.LightMatrixData.begin(), d.LightMatrixData.begin() + half,
+      d.LightMatrixData.begin() + half);
+    d.LightAbove = d.Light;
+    d.AboveSet = false;
+  }
+  else
+  {
+    StoreLight(d.Order, red, green, blue, d.LightAbove, d.LightMatrixData, 1);
+    d.AboveSet = true;
+  }
+  d.LightDirty = true;
+}
+
+void GIResources::SetAnalyticLightTable(bool use)
+{
+  this->Impl->WantLobes = use;
+}
+
+double GIResources::GetAnalyticLightMinTheta() const
+{
+  const int order = this->Impl->Order;
+  return order > 0 ? sh::AnalyticLightTables::MaxTheta /
+      (sh::AnalyticLightTables::Get(order).GetThetaResolution() - 1)
+                   : 0.0;
 }
 
 void GIResources::SetBlockers(const std::vector<float>& spheres, const std::vector<float>& planes)
@@ -283,8 +350,17 @@ void GIResources::Bind(vtkShaderProgram* program)
   const int n2 = d.Order * d.Order;
   if (d.LightDirty || !d.LightMatrix)
   {
-    d.LightMatrix = FloatTexture(d.Window, n2, n2, 4, d.LightMatrixData);
+    d.LightMatrix = FloatTexture(d.Window, n2, 2 * n2, 4, d.LightMatrixData);
     d.LightDirty = false;
+  }
+  if (d.WantLobes && !d.Lobes)
+  {
+    const sh::AnalyticLightTables& lobes = sh::AnalyticLightTables::Get(d.Order);
+    d.LobeThetaResolution = lobes.GetThetaResolution();
+    d.LobePhiResolution = lobes.GetPhiResolution();
+    std::vector<float> texels(lobes.GetLobeTable().begin(), lobes.GetLobeTable().end());
+    d.Lobes = FloatTexture(
+      d.Window, d.Order + 1, d.LobeThetaResolution * d.LobePhiResolution, 1, texels);
   }
   const int spheres = static_cast<int>(d.Spheres.size() / 4);
   if (d.BlockersDirty || !d.Proxies)
@@ -335,15 +411,27 @@ void GIResources::Bind(vtkShaderProgram* program)
   program->SetUniformf("pgiSinMinAngle", std::sin(static_cast<float>(d.Settings.MinBlockerAngle)));
   program->SetUniformi("pgiSelfShadowRules", d.Settings.SelfShadowRules ? 1 : 0);
   program->SetUniform3fv("pgiLight", n2, d.Light.data());
+  program->SetUniform3fv("pgiLightAbove", n2, d.LightAbove.data());
   program->SetUniformi("pgiLightMatrix", d.LightMatrix->GetTextureUnit());
   program->SetUniform1fv("pgiTransferZH", d.Order, d.TransferZH.data());
+  if (d.Lobes)
+  {
+    d.Lobes->Activate();
+    program->SetUniformi("pgiLobeTable", d.Lobes->GetTextureUnit());
+    program->SetUniformi("pgiLobeThetaResolution", d.LobeThetaResolution);
+    program->SetUniformi("pgiLobePhiResolution", d.LobePhiResolution);
+    program->SetUniformf("pgiLobeThetaScale",
+      static_cast<float>((d.LobeThetaResolution - 1) / sh::AnalyticLightTables::MaxTheta));
+    program->SetUniformf("pgiLobePhiScale",
+      static_cast<float>((d.LobePhiResolution - 1) / sh::AnalyticLightTables::MaxPhi));
+  }
 }
 
 void GIResources::Unbind()
 {
   Internals& d = *this->Impl;
   for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get(),
-         d.CapVis.Get(), d.DTable.Get() })
+         d.CapVis.Get(), d.DTable.Get(), d.Lobes.Get() })
   {
     if (t)
     {
@@ -356,14 +444,14 @@ void GIResources::ReleaseGraphicsResources(vtkWindow* window)
 {
   Internals& d = *this->Impl;
   for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get(),
-         d.CapVis.Get(), d.DTable.Get() })
+         d.CapVis.Get(), d.DTable.Get(), d.Lobes.Get() })
   {
     if (t)
     {
       t->ReleaseGraphicsResources(window);
     }
   }
-  d.CapLog = d.OL = d.LightMatrix = d.Proxies = d.CapVis = d.DTable = nullptr;
+  d.CapLog = d.OL = d.LightMatrix = d.Proxies = d.CapVis = d.DTable = d.Lobes = nullptr;
   d.Order = 0;
   d.Window = nullptr;
 }
@@ -402,7 +490,8 @@ const std::string& GLSLHarness::GetError() const
 }
 
 bool GLSLHarness::Run(int order, const std::string& declarations, const std::string& body,
-  int inputs, int outputs, const std::vector<float>& in, std::vector<float>& out)
+  int inputs, int outputs, const std::vector<float>& in, std::vector<float>& out,
+  const std::function<void(vtkShaderProgram*)>& uniforms)
 {
   Internals& d = *this->Impl;
   d.Error.clear();
@@ -443,6 +532,10 @@ bool GLSLHarness::Run(int order, const std::string& declarations, const std::str
     return false;
   }
   d.Resources.Bind(program);
+  if (uniforms)
+  {
+    uniforms(program);
+  }
 
   vtkNew<vtkOpenGLBufferObject> input;
   input->Upload(in, vtkOpenGLBufferObject::ArrayBuffer);

@@ -6,24 +6,32 @@
  * textures and uniforms (GIResources), and a transform-feedback harness that
  * runs any GLSL helper per vertex and reads the results back (GLSLHarness).
  *
- * The GLSL twins and their C++ originals:
- * | GLSL (pgiGILibrary.glsl) | C++ |
+ * The GLSL twins and their C++ originals (pgiGILibrary.glsl; the indirect
+ * ones in pgiISLibrary.glsl), each pair compared in TestRenderingGLSLTwins:
+ * | GLSL | C++ |
  * |---|---|
  * | pgiSHBasis | sh::EvaluateBasis (both from the same generator script) |
  * | pgiCapLog | sh::CapTables::CapLog (float path) |
  * | pgiCapVisibility | sh::CapTables::CapVisibility (float path) |
- * | pgiAveragedIndirect, pgiAveragedRadiance | sh::IndirectTables::AveragedIndirect,
- * AveragedRadiance | | pgiRotateScaledZonal | sh::RotateScaledZonal | | pgiOptimalLinear |
- * sh::CapTables::OptimalLinear | | pgiSHSquare | sh::TripleProduct::Square (generated from its
- * Terms()) | | pgiExpHybrid, pgiGuardRange | sh::Exp (HYB), sh::GuardRange | | pgiReplaceBlocker |
- * proxygi::ReplaceBlocker | | pgiVisibility | proxygi::SoftShadows::Visibility | | pgiShade,
- * pgiShadeUnshadowed | proxygi::EnvironmentShading (product-matrix path) |
+ * | pgiAveragedIndirect, pgiAveragedRadiance | sh::IndirectTables (float path) |
+ * | pgiRotateScaledZonal | sh::RotateScaledZonal |
+ * | pgiOptimalLinear | sh::CapTables::OptimalLinear |
+ * | pgiSHSquare | sh::TripleProduct::Square (generated from its Terms()) |
+ * | pgiExpHybrid, pgiGuardRange | sh::Exp (HYB), sh::GuardRange |
+ * | pgiReplaceBlocker | proxygi::ReplaceBlocker |
+ * | pgiVisibility, pgiVisibilityOf | SoftShadows::Visibility (PlanesInLogSpace on, off) |
+ * | pgiShade(Of), pgiShadeUnshadowed(Of) | EnvironmentShading (product matrix) of L, or
+ *   (light 1) of the light above the planes that LightAbovePlanes built |
+ * | pgiProxyIndirectTerm(H), pgiResolveIndirect(Scaled) | IndirectExitRadiance (averaged) |
+ * | pgiPlaneShadowScale | proxygi::PlaneShadowScale |
+ * | pgiAnalyticLight, pgiAnalyticLightLookup | sh::AnalyticLightTables::Evaluate, Lookup |
  */
 #ifndef pgiGIShaders_h
 #define pgiGIShaders_h
 
 #include "ProxyGIRenderingModule.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,6 +59,10 @@ constexpr int MaxPlanes = 8;
  */
 PROXYGIRENDERING_EXPORT bool ReadProxies(
   vtkPolyData* proxies, std::vector<float>& spheres, std::string& error);
+
+/// The indirect-light GLSL (pgiISLibrary.glsl: pgiProxyIndirectTerm,
+/// pgiResolveIndirect and their uniforms), to go after LibrarySource.
+PROXYGIRENDERING_EXPORT std::string IndirectLibrarySource();
 
 /// GLSL statements of TripleProduct::Square for one order (o = f * f).
 PROXYGIRENDERING_EXPORT std::string SquareSource(int order);
@@ -90,9 +102,21 @@ public:
   int GetOrder() const;
   /// Light: order^2 SH coefficients per channel (radiance), in double.
   void SetLight(const double* red, const double* green, const double* blue);
+  /**
+   * The light above the blocker planes (light 1 of pgiShadeOf and
+   * pgiShadeUnshadowedOf): L times the planes' steps as LightAbovePlanes
+   * built it. Null pointers: light 1 is L again (also the default; call
+   * after SetLight when both change).
+   */
+  void SetLightAbovePlanes(const double* red, const double* green, const double* blue);
   /// Spheres as x, y, z, r (4 floats each); planes as origin, unit normal (6 each).
   void SetBlockers(const std::vector<float>& spheres, const std::vector<float>& planes);
   void SetSettings(const KernelSettings& settings);
+  /// Uploads (on the next Bind) AnalyticLightTables' lobe table for the
+  /// local lights (pgiAnalyticLight); off by default (built on demand).
+  void SetAnalyticLightTable(bool use);
+  /// The table's first theta node, below which the filter scales L_H.
+  double GetAnalyticLightMinTheta() const;
 
   /// Activates the textures and sets every uniform on a bound program.
   void Bind(vtkShaderProgram* program);
@@ -121,8 +145,10 @@ public:
   GLSLHarness& operator=(const GLSLHarness&) = delete;
 
   GIResources& Resources();
+  /// uniforms: sets the declarations' own uniforms on the bound program.
   bool Run(int order, const std::string& declarations, const std::string& body, int inputs,
-    int outputs, const std::vector<float>& in, std::vector<float>& out);
+    int outputs, const std::vector<float>& in, std::vector<float>& out,
+    const std::function<void(vtkShaderProgram*)>& uniforms = {});
   const std::string& GetError() const;
 
 private:

@@ -9,6 +9,9 @@
 #include "pgiGIShaders.h"
 
 #include "pgiEnvironmentMap.h"
+#include "pgiEnvironmentShading.h"
+#include "pgiIndirectLight.h"
+#include "pgiSoftShadows.h"
 #include "pgiMaterial.h"
 #include "vtkPGILighting.h"
 
@@ -30,6 +33,7 @@
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
 #include "vtkTransformFeedback.h"
 #include "vtk_glew.h"
 
@@ -67,6 +71,15 @@ struct vtkPGIGIPolyDataMapper::Internals
   int ProxyCount = 0;
   int ProgramHandle = 0;
   bool GIInShaders = false;
+  // Planes carried by the light: their visibility (for xi); indirect: the
+  // secondary lights' response (interleaved RGB), proxies' albedo texture.
+  bool PlanesInLight = false;
+  std::vector<float> PlaneVisibility;
+  std::vector<float> Response;
+  std::vector<float> Albedos;
+  vtkSmartPointer<vtkTextureObject> ProxyAlbedo;
+  // Local lights: centre and radius (-1: point light), radiance; 4 floats each.
+  std::vector<float> LocalLights, LocalRadiance;
   vtkTimeStamp ShaderModeTime;
 };
 
@@ -74,6 +87,7 @@ vtkPGIGIPolyDataMapper::vtkPGIGIPolyDataMapper()
   : GPU(new Internals)
 {
   this->SetAlbedoArrayName("Albedo");
+  this->SetProxyAlbedoArrayName("Albedo");
 }
 
 vtkPGIGIPolyDataMapper::~vtkPGIGIPolyDataMapper()
@@ -81,6 +95,7 @@ vtkPGIGIPolyDataMapper::~vtkPGIGIPolyDataMapper()
   this->SetProxies(nullptr);
   this->SetLighting(nullptr);
   this->SetAlbedoArrayName(nullptr);
+  this->SetProxyAlbedoArrayName(nullptr);
 }
 
 void vtkPGIGIPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
@@ -105,11 +120,28 @@ void vtkPGIGIPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CombineWithVTKLighting: " << this->CombineWithVTKLighting << "\n";
   os << indent << "CaptureVisibility: " << this->CaptureVisibility << "\n";
   os << indent << "AlwaysRecompute: " << this->AlwaysRecompute << "\n";
+  os << indent << "PlaneBlocking: "
+     << (this->PlaneBlocking == PLANES_IN_LIGHT ? "PLANES_IN_LIGHT" : "PLANES_IN_LOG_SPACE")
+     << "\n";
+  os << indent << "Indirect: " << this->Indirect << "\n";
+  os << indent << "PlaneBounceShadows: " << this->PlaneBounceShadows << "\n";
+  os << indent << "LocalLights: " << this->LocalLights << "\n";
+  os << indent << "DefaultProxyAlbedo: " << this->DefaultProxyAlbedo[0] << " "
+     << this->DefaultProxyAlbedo[1] << " " << this->DefaultProxyAlbedo[2] << "\n";
+  os << indent << "ProxyAlbedoArrayName: "
+     << (this->ProxyAlbedoArrayName ? this->ProxyAlbedoArrayName : "(none)") << "\n";
   os << indent << "NumberOfGIUpdates: " << this->NumberOfGIUpdates << "\n";
   os << indent << "GIStatus: " << this->GIStatus << "\n";
 }
 
 void vtkPGIGIPolyDataMapper::AddBlockerPlane(const double origin[3], const double normal[3])
+{
+  const double black[3] = { 0.0, 0.0, 0.0 };
+  this->AddBlockerPlane(origin, normal, black);
+}
+
+void vtkPGIGIPolyDataMapper::AddBlockerPlane(
+  const double origin[3], const double normal[3], const double albedo[3])
 {
   if (this->BlockerPlanes.size() / 6 >= static_cast<std::size_t>(proxygi::gpu::MaxPlanes))
   {
@@ -123,12 +155,14 @@ void vtkPGIGIPolyDataMapper::AddBlockerPlane(const double origin[3], const doubl
   {
     this->BlockerPlanes.push_back(len > 0.0 ? normal[k] / len : (k == 2 ? 1.0 : 0.0));
   }
+  this->PlaneAlbedos.insert(this->PlaneAlbedos.end(), albedo, albedo + 3);
   this->Modified();
 }
 
 void vtkPGIGIPolyDataMapper::RemoveAllBlockerPlanes()
 {
   this->BlockerPlanes.clear();
+  this->PlaneAlbedos.clear();
   this->Modified();
 }
 
@@ -143,6 +177,11 @@ void vtkPGIGIPolyDataMapper::ReleaseGraphicsResources(vtkWindow* window)
   g.ProgramHandle = 0;
   g.CaptureKey.clear();
   g.HaveResults = false;
+  if (g.ProxyAlbedo)
+  {
+    g.ProxyAlbedo->ReleaseGraphicsResources(window);
+    g.ProxyAlbedo = nullptr;
+  }
   g.Window = nullptr;
   g.Input = nullptr;
   g.LightOrder = 0;
@@ -206,7 +245,35 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
     vtkErrorMacro("Could not upload the SH tables of order " << order << ".");
     return false;
   }
-  if (g.LightOrder != order || g.LightingTime != lightingTime)
+  // The knobs the GI pass depends on; display knobs (exposure, sRGB,
+  // combining with VTK's lights) only change uniforms of the surface pass.
+  std::ostringstream knobs;
+  knobs.precision(17);
+  knobs << order << " " << this->Shadows << " " << this->Albedo[0] << " " << this->Albedo[1] << " "
+        << this->Albedo[2] << " " << (this->AlbedoArrayName ? this->AlbedoArrayName : "") << " "
+        << this->SelfShadowRules << " " << this->MinBlockerAngle << " " << this->HybridMaxNorm
+        << " " << this->RangeTolerance << " " << this->CaptureVisibility << " "
+        << this->PlaneBlocking << " " << this->Indirect << " " << this->DefaultProxyAlbedo[0]
+        << " " << this->DefaultProxyAlbedo[1] << " " << this->DefaultProxyAlbedo[2] << " "
+        << (this->ProxyAlbedoArrayName ? this->ProxyAlbedoArrayName : "") << " "
+        << this->LocalLights << " " << this->PlaneBounceShadows;
+  for (double v : this->BlockerPlanes)
+  {
+    knobs << " " << v;
+  }
+  for (double v : this->PlaneAlbedos)
+  {
+    knobs << " " << v;
+  }
+  const bool settingsChanged = knobs.str() != g.Settings;
+  const int planeCount = static_cast<int>(this->BlockerPlanes.size() / 6);
+
+  // The lights, built on the CPU as the filter builds them: L; with planes
+  // carried by the light, L times the planes' steps (LightAbovePlanes) and
+  // the planes' visibility; the secondary lights' response (SecondaryLights:
+  // from the light above the planes, or from L times the planes' exp-log
+  // visibility when the planes are in log space).
+  if (g.LightOrder != order || g.LightingTime != lightingTime || settingsChanged)
   {
     const proxygi::EnvironmentMap* environment = nullptr;
     std::string error;
@@ -218,28 +285,83 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
     std::vector<double> lr(n2), lg(n2), lb(n2);
     environment->ProjectSH(order, lr.data(), lg.data(), lb.data());
     g.Resources.SetLight(lr.data(), lg.data(), lb.data());
+    g.PlanesInLight = this->PlaneBlocking == PLANES_IN_LIGHT && planeCount > 0;
+    proxygi::Blockers planes;
+    for (int k = 0; k < planeCount; ++k)
+    {
+      float v[9];
+      for (int q = 0; q < 6; ++q)
+      {
+        v[q] = static_cast<float>(this->BlockerPlanes[6 * k + q]);
+      }
+      for (int q = 0; q < 3; ++q)
+      {
+        v[6 + q] = static_cast<float>(this->PlaneAlbedos[3 * k + q]);
+      }
+      planes.AddPlane(v, v + 3, v + 6);
+    }
+    std::vector<double> planeVisibility(n2, 0.0);
+    if (g.PlanesInLight)
+    {
+      proxygi::LightAbovePlanes(*environment, order, planes.PlaneNormal.data(), planeCount,
+        lr.data(), lg.data(), lb.data(), planeVisibility.data());
+      g.Resources.SetLightAbovePlanes(lr.data(), lg.data(), lb.data());
+    }
+    else
+    {
+      g.Resources.SetLightAbovePlanes(nullptr, nullptr, nullptr);
+    }
+    g.PlaneVisibility.assign(planeVisibility.begin(), planeVisibility.end());
+    const proxygi::SecondaryLights secondary(
+      order, lr.data(), lg.data(), lb.data(), g.PlanesInLight ? nullptr : &planes);
+    g.Response.resize(3 * static_cast<std::size_t>(n2));
+    for (int i = 0; i < n2; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        g.Response[3 * i + c] = secondary.Response[c * n2 + i];
+      }
+    }
+    // Local lights as the filter reads them: spheres, then points.
+    g.LocalLights.clear();
+    g.LocalRadiance.clear();
+    if (this->LocalLights)
+    {
+      for (const auto& l : lighting->GetSphereLights())
+      {
+        g.LocalLights.insert(g.LocalLights.end(),
+          { float(l.Center[0]), float(l.Center[1]), float(l.Center[2]), float(l.Radius) });
+        g.LocalRadiance.insert(g.LocalRadiance.end(),
+          { float(l.Radiance[0]), float(l.Radiance[1]), float(l.Radiance[2]) });
+      }
+      for (const auto& l : lighting->GetPointLights())
+      {
+        g.LocalLights.insert(g.LocalLights.end(),
+          { float(l.Position[0]), float(l.Position[1]), float(l.Position[2]), -1.0f });
+        g.LocalRadiance.insert(g.LocalRadiance.end(),
+          { float(l.Intensity[0]), float(l.Intensity[1]), float(l.Intensity[2]) });
+      }
+      if (g.LocalLights.size() > 4 * static_cast<std::size_t>(MaxLocalLights))
+      {
+        vtkErrorMacro("At most " << MaxLocalLights << " local lights on the GPU; "
+                                 << g.LocalLights.size() / 4 << " given, the first "
+                                 << MaxLocalLights << " used.");
+        g.LocalLights.resize(4 * MaxLocalLights);
+        g.LocalRadiance.resize(3 * MaxLocalLights);
+      }
+    }
+    g.Resources.SetAnalyticLightTable(!g.LocalLights.empty());
+    if (g.LightOrder != order || g.LightingTime != lightingTime)
+    {
+      why << "light; ";
+    }
     g.LightOrder = order;
     g.LightingTime = lightingTime;
-    why << "light; ";
   }
-
-  // The knobs the GI pass depends on; display knobs (exposure, sRGB,
-  // combining with VTK's lights) only change uniforms of the surface pass.
-  std::ostringstream knobs;
-  knobs.precision(17);
-  knobs << order << " " << this->Shadows << " " << this->Albedo[0] << " " << this->Albedo[1] << " "
-        << this->Albedo[2] << " " << (this->AlbedoArrayName ? this->AlbedoArrayName : "") << " "
-        << this->SelfShadowRules << " " << this->MinBlockerAngle << " " << this->HybridMaxNorm
-        << " " << this->RangeTolerance << " " << this->CaptureVisibility;
-  for (double v : this->BlockerPlanes)
-  {
-    knobs << " " << v;
-  }
-  const bool settingsChanged = knobs.str() != g.Settings;
 
   // Blockers.
   const vtkMTimeType proxiesTime = this->Proxies ? this->Proxies->GetMTime() : 0;
-  if (proxiesTime != g.ProxiesTime || settingsChanged)
+  if (proxiesTime != g.ProxiesTime || settingsChanged || !g.ProxyAlbedo)
   {
     std::string error;
     if (!proxygi::gpu::ReadProxies(this->Proxies, g.Spheres, error))
@@ -249,6 +371,36 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
     std::vector<float> planes(this->BlockerPlanes.begin(), this->BlockerPlanes.end());
     g.Resources.SetBlockers(g.Spheres, planes);
     g.ProxyCount = static_cast<int>(g.Spheres.size() / 4);
+    // The proxies' albedo (as the filter reads it, Level 0 only), laid out
+    // as GIResources lays out the spheres.
+    g.Albedos.clear();
+    vtkDataArray* level =
+      this->Proxies ? this->Proxies->GetPointData()->GetArray("Level") : nullptr;
+    const vtkIdType count = g.ProxyCount == 0 ? 0 : this->Proxies->GetNumberOfPoints();
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      if (level && level->GetTuple1(i) != 0.0)
+      {
+        continue;
+      }
+      double albedo[3];
+      proxygi::AlbedoOf(
+        this->Proxies, this->ProxyAlbedoArrayName, i, this->DefaultProxyAlbedo, albedo);
+      g.Albedos.insert(
+        g.Albedos.end(), { float(albedo[0]), float(albedo[1]), float(albedo[2]), 1.0f });
+    }
+    const int width = std::max(1, std::min(g.ProxyCount, 1024));
+    const int rows = std::max(1, (g.ProxyCount + width - 1) / width);
+    g.Albedos.resize(4 * static_cast<std::size_t>(width) * rows, 0.0f);
+    if (g.ProxyAlbedo)
+    {
+      g.ProxyAlbedo->ReleaseGraphicsResources(window);
+    }
+    g.ProxyAlbedo = vtkSmartPointer<vtkTextureObject>::New();
+    g.ProxyAlbedo->SetContext(window);
+    g.ProxyAlbedo->SetMinificationFilter(vtkTextureObject::Nearest);
+    g.ProxyAlbedo->SetMagnificationFilter(vtkTextureObject::Nearest);
+    g.ProxyAlbedo->Create2DFromRaw(width, rows, 4, VTK_FLOAT, g.Albedos.data());
     if (proxiesTime != g.ProxiesTime)
     {
       why << "proxies; ";
@@ -370,6 +522,7 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
   }
   vtkShaderProgram::Substitute(vs, "//PGI::Defines", "");
   vtkShaderProgram::Substitute(vs, "//PGI::Library", proxygi::gpu::LibrarySource(order));
+  vtkShaderProgram::Substitute(vs, "//PGI::ISLibrary", proxygi::gpu::IndirectLibrarySource());
   vtkShaderProgram::Substitute(vs, "//PGI::Capture::Dec", captureDec.str());
   vtkShaderProgram::Substitute(vs, "//PGI::Capture::Impl", captureImpl.str());
   vtkShaderProgram* program =
@@ -418,6 +571,32 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
     matrix == std::array<double, 16>{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
   program->SetUniformi("pgiMoved", identity ? 0 : 1);
   program->SetUniformi("pgiShadows", this->Shadows ? 1 : 0);
+  program->SetUniformi("pgiPlanesInLight", g.PlanesInLight ? 1 : 0);
+  program->SetUniform1fv("pgiPlaneVisibility", n2, g.PlaneVisibility.data());
+  program->SetUniformi("pgiIndirect", this->Indirect ? 1 : 0);
+  program->SetUniformi("pgiPlaneBounceShadows", this->PlaneBounceShadows ? 1 : 0);
+  program->SetUniform3fv("pgiResponse", n2, g.Response.data());
+  {
+    std::vector<float> albedos(3 * proxygi::gpu::MaxPlanes, 0.0f);
+    for (std::size_t k = 0; k < this->PlaneAlbedos.size() && k < albedos.size(); ++k)
+    {
+      albedos[k] = static_cast<float>(this->PlaneAlbedos[k]);
+    }
+    program->SetUniform3fv("pgiPlaneAlbedo", proxygi::gpu::MaxPlanes, albedos.data());
+  }
+  {
+    const int lights = static_cast<int>(g.LocalLights.size() / 4);
+    std::vector<float> centres(4 * MaxLocalLights, 0.0f), radiance(3 * MaxLocalLights, 0.0f);
+    std::copy(g.LocalLights.begin(), g.LocalLights.end(), centres.begin());
+    std::copy(g.LocalRadiance.begin(), g.LocalRadiance.end(), radiance.begin());
+    program->SetUniformi("pgiNumLocalLights", lights);
+    program->SetUniform4fv("pgiLocalLight", MaxLocalLights, centres.data());
+    program->SetUniform3fv("pgiLocalRadiance", MaxLocalLights, radiance.data());
+    program->SetUniformf("pgiLobeMinTheta",
+      lights > 0 ? static_cast<float>(g.Resources.GetAnalyticLightMinTheta()) : 0.0f);
+  }
+  g.ProxyAlbedo->Activate();
+  program->SetUniformi("pgiProxyAlbedo", g.ProxyAlbedo->GetTextureUnit());
 
   g.VAO->Bind();
   const struct
@@ -449,6 +628,7 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
   glDisable(GL_RASTERIZER_DISCARD);
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
   g.VAO->Release();
+  g.ProxyAlbedo->Deactivate();
   g.Resources.Unbind();
 
   g.Matrix = matrix;
@@ -458,7 +638,19 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
   std::ostringstream status;
   status << "GI on the GPU: " << n << " vertices, " << g.ProxyCount << " proxies, "
          << this->BlockerPlanes.size() / 6 << " planes, order " << order << ", "
-         << (this->Shadows ? "SHEXP shadows (HYB)" : "no shadows") << "; recomputed ("
+         << (this->Shadows ? "SHEXP shadows (HYB)" : "no shadows")
+         << (planeCount == 0 ? ""
+                : g.PlanesInLight ? ", planes carried by the light"
+                                  : ", planes in log space")
+         << (this->Indirect ? ", one-bounce indirect (averaged, xi)" : "")
+         << (this->Indirect && this->PlaneBounceShadows && planeCount > 0
+                ? ", planes' bounce shadowed"
+                : "");
+  if (!g.LocalLights.empty())
+  {
+    status << ", " << g.LocalLights.size() / 4 << " local lights";
+  }
+  status << "; recomputed ("
          << (reasons.empty() ? "AlwaysRecompute" : reasons.substr(0, reasons.size() - 2)) << ")";
   this->GIStatus = status.str();
   return true;

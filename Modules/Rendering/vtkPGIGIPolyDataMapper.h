@@ -42,9 +42,24 @@
  * | CaptureVisibility | off | also keep the per-vertex SH visibility (read back with
  * GetPerVertexResults) |
  * | AlwaysRecompute | off | run the GI pass every frame even if nothing changed |
+ * | PlaneBlocking | PLANES_IN_LIGHT | as vtkPGIGlobalIllumination: receivers above every
+ * plane get L times the planes' steps (LightAbovePlanes, built on the CPU) and no planes in
+ * log space; PLANES_IN_LOG_SPACE accumulates the planes' 90-degree caps in log space |
+ * | Indirect | off | one-bounce unshadowed indirect light from the proxies and planes
+ * (the filter's INDIRECT_MODE_UNSHADOWED, AVERAGED operator, overlap normalisation xi) |
+ * | PlaneBounceShadows | on | with Indirect: planes reflect less where the proxies shadow
+ * them (the filter's PlaneShadowScale; one more visibility per receiver and plane) |
+ * | DefaultProxyAlbedo | 0.8 0.8 0.8 | proxies' albedo where they have no
+ * ProxyAlbedoArrayName ("Albedo") array; planes' albedo: AddBlockerPlane (default 0) |
+ * | LocalLights | on | the lighting's spherical and point lights (at most 16), analytic
+ * L_H lobes (AnalyticLightTables, uploaded) shadowed by the proxies' visibility |
+ *
+ * The captured radiance is direct + indirect + local exit radiance, the
+ * filter's Radiance.
  *
  * Not on the GPU yet (the CPU filter has them): exp methods other than HYB,
- * AccumulationOrder, windowing, hierarchy cuts, indirect light, local lights.
+ * AccumulationOrder, windowing, hierarchy cuts, the indirect operators other
+ * than AVERAGED, the shadowed indirect mode.
  * The surface pass needs no geometry shader (no wide lines or edges).
  *
  * Errors: proxies without "Radius" or with NaN/Inf/negative values, a bad
@@ -78,8 +93,39 @@ public:
   virtual void SetLighting(vtkPGILighting* lighting);
   vtkGetObjectMacro(Lighting, vtkPGILighting);
 
-  /// Infinite planes blocking the half-space beneath them (at most 8).
+  /// Infinite planes blocking the half-space beneath them (at most 8);
+  /// albedo (default 0) for the indirect light they reflect.
   void AddBlockerPlane(const double origin[3], const double normal[3]);
+  void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
+
+  /// How blocker planes shadow (vtkPGIGlobalIllumination's values).
+  enum
+  {
+    PLANES_IN_LIGHT = 0,
+    PLANES_IN_LOG_SPACE = 1
+  };
+  vtkSetClampMacro(PlaneBlocking, int, PLANES_IN_LIGHT, PLANES_IN_LOG_SPACE);
+  vtkGetMacro(PlaneBlocking, int);
+
+  /// One-bounce unshadowed indirect light (averaged operator).
+  vtkSetMacro(Indirect, bool);
+  vtkGetMacro(Indirect, bool);
+  vtkBooleanMacro(Indirect, bool);
+  /// With Indirect: the planes reflect less where the proxies shadow them
+  /// (one more visibility per receiver and plane; the filter's knob).
+  vtkSetMacro(PlaneBounceShadows, bool);
+  vtkGetMacro(PlaneBounceShadows, bool);
+  vtkBooleanMacro(PlaneBounceShadows, bool);
+  /// Proxies' albedo: their ProxyAlbedoArrayName point array, else this.
+  vtkSetVector3Macro(DefaultProxyAlbedo, double);
+  vtkGetVector3Macro(DefaultProxyAlbedo, double);
+  vtkSetStringMacro(ProxyAlbedoArrayName);
+  vtkGetStringMacro(ProxyAlbedoArrayName);
+  /// The lighting's spherical and point lights (at most MaxLocalLights).
+  vtkSetMacro(LocalLights, bool);
+  vtkGetMacro(LocalLights, bool);
+  vtkBooleanMacro(LocalLights, bool);
+  static constexpr int MaxLocalLights = 16;
   void RemoveAllBlockerPlanes();
 
   vtkSetMacro(GlobalIllumination, bool);
@@ -149,6 +195,13 @@ protected:
   vtkPolyData* Proxies = nullptr;
   vtkPGILighting* Lighting = nullptr;
   std::vector<double> BlockerPlanes; // origin, normal
+  std::vector<double> PlaneAlbedos;  // 3 per plane
+  int PlaneBlocking = PLANES_IN_LIGHT;
+  bool Indirect = false;
+  bool PlaneBounceShadows = true;
+  double DefaultProxyAlbedo[3] = { 0.8, 0.8, 0.8 };
+  char* ProxyAlbedoArrayName = nullptr;
+  bool LocalLights = true;
   bool GlobalIllumination = true;
   bool Shadows = true;
   int Order = 4;

@@ -10,6 +10,8 @@
 
 //PGI::Library
 
+//PGI::ISLibrary
+
 in vec3 pgiPositionMC;
 in vec3 pgiNormalMC;
 in vec3 pgiAlbedoMC;
@@ -21,8 +23,65 @@ uniform mat3 pgiNormalToWorld;
 // normalised in double on upload as the CPU filter does) are used as they are.
 uniform int pgiMoved;
 uniform int pgiShadows;
+// 1: blocker planes carried by the light (PLANES_IN_LIGHT) for receivers
+// above every plane: light 1 (L times the planes' steps) and no planes in
+// log space; the others keep L and the planes in log space.
+uniform int pgiPlanesInLight;
+// The planes' visibility (LightAbovePlanes; its dot product with a
+// visibility gives the combined coverage, for xi).
+uniform float pgiPlaneVisibility[PGI_SH_N2];
+// One-bounce unshadowed indirect light from the proxies (albedo texture, the
+// proxy texture's layout) and the planes (pgiPlaneAlbedo, pgiResponse).
+uniform int pgiIndirect;
+uniform sampler2D pgiProxyAlbedo;
+// 1: planes reflect less where the proxies shadow them (PlaneBounceShadows).
+uniform int pgiPlaneBounceShadows;
+// Local lights: centre and radius (< 0: a point light), radiance (point
+// lights: intensity); the lobe table's first theta node.
+#define PGI_MAX_LOCAL_LIGHTS 16
+uniform int pgiNumLocalLights;
+uniform vec4 pgiLocalLight[PGI_MAX_LOCAL_LIGHTS];
+uniform vec3 pgiLocalRadiance[PGI_MAX_LOCAL_LIGHTS];
+uniform float pgiLobeMinTheta;
 
-// rgb: exit radiance (albedo included); a: blockers accumulated.
+// The local lights' exit radiance at a white receiver, shadowed by g when
+// shadows are on: vtkPGIGlobalIllumination's local-light loop. Below the
+// table's first node L_H grows as sin^2(theta) with a fixed shape: it is
+// evaluated there and scaled (point lights: theta -> 0, radiance
+// I / (pi d^2 sin^2 theta)).
+vec3 pgiLocalLights(vec3 p, vec3 n, float g[PGI_SH_N2])
+{
+  vec3 lit = vec3(0.0);
+  for (int k = 0; k < pgiNumLocalLights; ++k)
+  {
+    vec4 l = pgiLocalLight[k];
+    bool point = l.w < 0.0;
+    float radius = point ? 0.0 : l.w;
+    vec3 dir = l.xyz - p;
+    float dist = sqrt(dir.x * dir.x + dir.y * dir.y + dir.z * dir.z);
+    if (!(dist > radius))
+    {
+      continue; // inside an emitter
+    }
+    dir /= dist;
+    float sinTheta = radius / dist;
+    float thetaEval = max(point ? 0.0 : pgiAsin(sinTheta), pgiLobeMinTheta);
+    float s1 = sin(thetaEval);
+    float scale = point ? 1.0 / (pgiPi * dist * dist * s1 * s1) : (sinTheta / s1) * (sinTheta / s1);
+    float lh[PGI_SH_N2];
+    pgiAnalyticLight(n, dir, thetaEval, lh);
+    float weight = 0.0;
+    for (int i = 0; i < PGI_SH_N2; ++i)
+    {
+      weight += lh[i] * (pgiShadows != 0 ? g[i] : (i == 0 ? pgiSqrtFourPi : 0.0));
+    }
+    lit += scale * pgiLocalRadiance[k] * max(0.0, weight);
+  }
+  return lit;
+}
+
+// rgb: exit radiance (albedo included; direct + indirect + local lights,
+// the filter's Radiance); a: blockers accumulated.
 out vec4 pgiRadiance;
 
 //PGI::Capture::Dec
@@ -41,15 +100,51 @@ void main()
   float g[PGI_SH_N2];
   vec3 rgb;
   int used = 0;
-  if (pgiShadows != 0)
+  bool carried = pgiPlanesInLight != 0 && pgiAboveEveryPlane(p);
+  int light = carried ? 1 : 0;
+  if (pgiShadows != 0 || pgiIndirect != 0)
   {
-    used = pgiVisibility(p, n, g);
-    rgb = used > 0 ? pgiShade(n, g) : max(pgiShadeUnshadowed(n), vec3(0.0));
+    used = pgiVisibilityOf(p, n, !carried, g);
   }
   else
   {
     pgiSetConstantOne(g);
+  }
+  if (pgiShadows != 0)
+  {
+    rgb = used > 0 ? pgiShadeOf(light, n, g) : max(pgiShadeUnshadowedOf(light, n), vec3(0.0));
+  }
+  else
+  {
     rgb = pgiShadeUnshadowed(n);
+  }
+  if (pgiIndirect != 0 && used >= 0)
+  {
+    vec4 sum = vec4(0.0);
+    float h[PGI_SH_N2];
+    pgiDiffuseTransfer(n, h);
+    for (int s = 0; s < pgiNumProxies; ++s)
+    {
+      ivec2 texel = ivec2(s % pgiProxyTextureWidth, s / pgiProxyTextureWidth);
+      sum += pgiProxyIndirectTermH(p, n, h, texelFetch(pgiProxyTexture, texel, 0),
+        texelFetch(pgiProxyAlbedo, texel, 0).rgb);
+    }
+    float dc = g[0];
+    if (carried)
+    {
+      float coverage = 0.0;
+      for (int i = 0; i < PGI_SH_N2; ++i)
+      {
+        coverage += g[i] * pgiPlaneVisibility[i];
+      }
+      dc = coverage / pgiSqrtFourPi;
+    }
+    rgb += pgiResolveIndirectScaled(
+      p, n, sum, dc, pgiPlaneBounceShadows != 0, pgiPlanesInLight == 0);
+  }
+  if (pgiNumLocalLights > 0)
+  {
+    rgb += pgiLocalLights(p, n, g);
   }
   pgiRadiance = vec4(rgb * pgiAlbedoMC, float(used));
   //PGI::Capture::Impl

@@ -43,8 +43,13 @@ uniform int pgiSelfShadowRules;
 
 // Environment light: L (per channel), its product matrix M_L and the scaled
 // ZH of the diffuse transfer H (pgiEnvironmentShading.h).
+// Two lights share the matrix texture: light 0 is the environment L (rows
+// 0..n2-1), light 1 the light above the blocker planes, L times the planes'
+// steps (LightAbovePlanes, built on the CPU; rows n2..2 n2-1; L itself when
+// no planes are carried by the light).
 uniform vec3 pgiLight[PGI_SH_N2];
-uniform sampler2D pgiLightMatrix; // RGB: texel (j, i) = (M_R, M_G, M_B)_ij
+uniform vec3 pgiLightAbove[PGI_SH_N2];
+uniform sampler2D pgiLightMatrix; // RGB: texel (j, light n2 + i) = (M_R, M_G, M_B)_ij
 uniform float pgiTransferZH[PGI_SH_ORDER];
 
 // std::asin to float precision. The drivers' built-in asin is an
@@ -356,7 +361,9 @@ void pgiAccumulateCap(float theta, vec3 d, inout float f[PGI_SH_N2])
 // SoftShadows::Visibility: blockers' log-visibility summed, then HYB exp.
 // Returns the number of blockers accumulated (0: g = 1, no exp run; -1: the
 // exp overflowed and g = 1, as the CPU filter leaves such receivers).
-int pgiVisibility(vec3 p, vec3 n, out float g[PGI_SH_N2])
+// planesInLogSpace: SoftShadowSettings::PlanesInLogSpace (false: the planes
+// are carried by the light and left out here).
+int pgiVisibilityOf(vec3 p, vec3 n, bool planesInLogSpace, out float g[PGI_SH_N2])
 {
   float f[PGI_SH_N2];
   for (int i = 0; i < PGI_SH_N2; ++i)
@@ -387,7 +394,7 @@ int pgiVisibility(vec3 p, vec3 n, out float g[PGI_SH_N2])
     pgiAccumulateCap(pgiAsin(min(1.0, r / len)), d / len, f);
     ++used;
   }
-  for (int k = 0; k < pgiNumPlanes; ++k)
+  for (int k = 0; planesInLogSpace && k < pgiNumPlanes; ++k)
   {
     vec3 o = pgiPlaneOrigin[k];
     vec3 pn = pgiPlaneNormal[k];
@@ -410,6 +417,28 @@ int pgiVisibility(vec3 p, vec3 n, out float g[PGI_SH_N2])
     return -1;
   }
   return used;
+}
+
+// The planes accumulated in log space (SoftShadows' default settings).
+int pgiVisibility(vec3 p, vec3 n, out float g[PGI_SH_N2])
+{
+  return pgiVisibilityOf(p, n, true, g);
+}
+
+// Whether p is strictly above every blocker plane (the receivers whose light
+// carries the planes; vtkPGIGlobalIllumination's aboveEveryPlane).
+bool pgiAboveEveryPlane(vec3 p)
+{
+  for (int k = 0; k < pgiNumPlanes; ++k)
+  {
+    vec3 o = pgiPlaneOrigin[k];
+    vec3 pn = pgiPlaneNormal[k];
+    if (!((p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z > 0.0))
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 // sh::DiffuseTransfer: H(N), the clamped cosine over pi rotated to N.
@@ -445,9 +474,11 @@ vec3 pgiAveragedRadiance(float theta, vec3 d, vec3 radiance[PGI_SH_N2])
   return kappa;
 }
 
-// Rows [0, rows) of M_L g: the SH of the shadowed incident radiance.
-void pgiShadowedLight(float g[PGI_SH_N2], int rows, out vec3 lg[PGI_SH_N2])
+// Rows [0, rows) of M_L g for light 0 (L) or 1 (the light above the
+// planes): the SH of the shadowed incident radiance.
+void pgiShadowedLightOf(int light, float g[PGI_SH_N2], int rows, out vec3 lg[PGI_SH_N2])
 {
+  int first = light * PGI_SH_N2;
   for (int i = 0; i < PGI_SH_N2; ++i)
   {
     vec3 row = vec3(0.0);
@@ -455,11 +486,16 @@ void pgiShadowedLight(float g[PGI_SH_N2], int rows, out vec3 lg[PGI_SH_N2])
     {
       for (int j = 0; j < PGI_SH_N2; ++j)
       {
-        row += texelFetch(pgiLightMatrix, ivec2(j, i), 0).rgb * g[j];
+        row += texelFetch(pgiLightMatrix, ivec2(j, first + i), 0).rgb * g[j];
       }
     }
     lg[i] = row;
   }
+}
+
+void pgiShadowedLight(float g[PGI_SH_N2], int rows, out vec3 lg[PGI_SH_N2])
+{
+  pgiShadowedLightOf(0, g, rows, lg);
 }
 
 // max(0, lg . H(N)) over the first `rows` coefficients.
@@ -475,23 +511,114 @@ vec3 pgiShadeShadowedLight(vec3 n, vec3 lg[PGI_SH_N2], int rows)
   return max(sum, vec3(0.0));
 }
 
-// EnvironmentShading::Shade, product-matrix path: max(0, (M_L g) . H(N)).
-vec3 pgiShade(vec3 n, float g[PGI_SH_N2])
+// EnvironmentShading::Shade, product-matrix path: max(0, (M_L g) . H(N)),
+// for light 0 (L) or 1 (the light above the planes).
+vec3 pgiShadeOf(int light, vec3 n, float g[PGI_SH_N2])
 {
   vec3 lg[PGI_SH_N2];
-  pgiShadowedLight(g, PGI_SH_N2, lg);
+  pgiShadowedLightOf(light, g, PGI_SH_N2, lg);
   return pgiShadeShadowedLight(n, lg, PGI_SH_N2);
 }
 
+vec3 pgiShade(vec3 n, float g[PGI_SH_N2])
+{
+  return pgiShadeOf(0, n, g);
+}
+
 // EnvironmentShading::ShadeUnshadowed: H(N) . L, exact, not clamped.
-vec3 pgiShadeUnshadowed(vec3 n)
+vec3 pgiShadeUnshadowedOf(int light, vec3 n)
 {
   float h[PGI_SH_N2];
   pgiDiffuseTransfer(n, h);
   vec3 sum = vec3(0.0);
   for (int i = 0; i < PGI_SH_N2; ++i)
   {
-    sum += pgiLight[i] * h[i];
+    sum += (light == 0 ? pgiLight[i] : pgiLightAbove[i]) * h[i];
   }
   return sum;
+}
+
+vec3 pgiShadeUnshadowed(vec3 n)
+{
+  return pgiShadeUnshadowedOf(0, n);
+}
+
+// Local lights (spherical and point lights of vtkPGILighting) with the
+// analytic L_H table: AnalyticLightTables (pgiSHLightTables.h), its raw lobe
+// table uploaded as a texture: row (i * phiResolution + j) holds the lobe
+// angle, then order scaled ZH values (texel (k, row)).
+uniform sampler2D pgiLobeTable;
+uniform int pgiLobeThetaResolution;
+uniform int pgiLobePhiResolution;
+uniform float pgiLobeThetaScale; // (thetaResolution - 1) / MaxTheta
+uniform float pgiLobePhiScale;   // (phiResolution - 1) / MaxPhi
+
+// std::acos to float precision, through pgiAsin.
+float pgiAcos(float x)
+{
+  return 0.5 * pgiPi - pgiAsin(x);
+}
+
+// AnalyticLightTables::Lookup (float path): bilinear in theta and phi.
+void pgiAnalyticLightLookup(float theta, float phi, out float angle, out float zh[PGI_SH_ORDER])
+{
+  int lastT = pgiLobeThetaResolution - 1, lastP = pgiLobePhiResolution - 1;
+  float u = theta * pgiLobeThetaScale;
+  float w = phi * pgiLobePhiScale;
+  u = u > 0.0 ? (u < float(lastT) ? u : float(lastT)) : 0.0;
+  w = w > 0.0 ? (w < float(lastP) ? w : float(lastP)) : 0.0;
+  int i = min(int(u), lastT - 1);
+  int j = min(int(w), lastP - 1);
+  float tu = u - float(i), tw = w - float(j);
+  int r00 = i * pgiLobePhiResolution + j;
+  int r10 = r00 + pgiLobePhiResolution;
+  for (int k = 0; k <= PGI_SH_ORDER; ++k)
+  {
+    float t00 = texelFetch(pgiLobeTable, ivec2(k, r00), 0).r;
+    float t01 = texelFetch(pgiLobeTable, ivec2(k, r00 + 1), 0).r;
+    float t10 = texelFetch(pgiLobeTable, ivec2(k, r10), 0).r;
+    float t11 = texelFetch(pgiLobeTable, ivec2(k, r10 + 1), 0).r;
+    float a = t00 + (t01 - t00) * tw;
+    float b = t10 + (t11 - t10) * tw;
+    float value = a + (b - a) * tu;
+    if (k == 0)
+    {
+      angle = value;
+    }
+    else
+    {
+      zh[k - 1] = value;
+    }
+  }
+}
+
+// AnalyticLightTables::Evaluate: L_H of a spherical light of radiance 1 and
+// angular radius theta in unit direction d from a receiver with normal n.
+void pgiAnalyticLight(vec3 n, vec3 d, float theta, out float lh[PGI_SH_N2])
+{
+  float cosPhi = n.x * d.x + n.y * d.y + n.z * d.z;
+  cosPhi = cosPhi > -1.0 ? (cosPhi < 1.0 ? cosPhi : 1.0) : -1.0;
+  float phi = pgiAcos(cosPhi);
+  if (phi >= 0.5 * pgiPi + theta)
+  {
+    for (int i = 0; i < PGI_SH_N2; ++i)
+    {
+      lh[i] = 0.0;
+    }
+    return;
+  }
+  vec3 t = d - cosPhi * n;
+  float len = sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
+  if (!(len > 1e-6))
+  {
+    t = abs(n.x) < 0.6 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+    float dt = t.x * n.x + t.y * n.y;
+    t -= dt * n;
+    len = sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
+  }
+  float angle;
+  float zh[PGI_SH_ORDER];
+  pgiAnalyticLightLookup(theta, phi, angle, zh);
+  float ca = cos(angle), sa = sin(angle) / len;
+  pgiRotateScaledZonal(zh, ca * n + sa * t, lh);
 }

@@ -40,20 +40,15 @@ float pgiCapWeight(float theta, vec3 d, float h[PGI_SH_N2])
 }
 
 // One proxy's one-bounce light at receiver (p, n), white receiver: rgb =
-// kappa (H(N) . cap) with the averaged operator, a = its solid angle; both
-// times the smooth clamp of the sphere of influence.
-vec4 pgiProxyIndirect(vec3 p, vec3 n, vec4 sphere, vec3 albedo, float expansion)
+// kappa (H(N) . cap) with the averaged operator, a = its solid angle (the
+// terms IndirectExitRadiance sums over the blockers SoftShadows::Visibility
+// saw; zero for the blockers it skips). h: H(N) (pgiDiffuseTransfer of n),
+// computed once per receiver by the caller.
+vec4 pgiProxyIndirectTermH(vec3 p, vec3 n, float h[PGI_SH_N2], vec4 sphere, vec3 albedo)
 {
   vec3 c = sphere.xyz;
   float r = sphere.w;
   if (!(r > 0.0))
-  {
-    return vec4(0.0);
-  }
-  vec3 v = c - p;
-  float dist = sqrt(dot(v, v));
-  float weight = dist > 0.0 ? pgiInfluenceWeight(r / dist, expansion) : 1.0;
-  if (!(weight > 0.0))
   {
     return vec4(0.0);
   }
@@ -74,17 +69,74 @@ vec4 pgiProxyIndirect(vec3 p, vec3 n, vec4 sphere, vec3 albedo, float expansion)
   vec3 rgb = vec3(0.0);
   if (albedo.r > 0.0 || albedo.g > 0.0 || albedo.b > 0.0)
   {
-    float h[PGI_SH_N2];
-    pgiDiffuseTransfer(n, h);
     rgb = albedo * pgiAveragedRadiance(theta, d, pgiResponse) * pgiCapWeight(theta, d, h);
   }
-  return weight * vec4(rgb, omega);
+  return vec4(rgb, omega);
+}
+
+vec4 pgiProxyIndirectTerm(vec3 p, vec3 n, vec4 sphere, vec3 albedo)
+{
+  float h[PGI_SH_N2];
+  pgiDiffuseTransfer(n, h);
+  return pgiProxyIndirectTermH(p, n, h, sphere, albedo);
+}
+
+// The same times the smooth clamp of the sphere of influence (image space).
+vec4 pgiProxyIndirect(vec3 p, vec3 n, vec4 sphere, vec3 albedo, float expansion)
+{
+  vec3 v = sphere.xyz - p;
+  float dist = sqrt(dot(v, v));
+  float weight = dist > 0.0 ? pgiInfluenceWeight(sphere.w / dist, expansion) : 1.0;
+  if (!(sphere.w > 0.0) || !(weight > 0.0))
+  {
+    return vec4(0.0);
+  }
+  return weight * pgiProxyIndirectTerm(p, n, sphere, albedo);
+}
+
+// PlaneShadowScale (pgiIndirectLight.cxx): how much of plane k's light
+// reaches the part of it a receiver at p with normal n mostly sees: the
+// plane point along normalize(n - m) shaded with the proxies' visibility
+// there over shaded without it (light 0, L), per channel in [0, 1]; 1 when
+// the receiver does not see the plane or nothing shadows that point.
+vec3 pgiPlaneShadowScale(vec3 p, vec3 n, int k, bool planesInLogSpace)
+{
+  vec3 o = pgiPlaneOrigin[k];
+  vec3 m = pgiPlaneNormal[k];
+  float height = (p.x - o.x) * m.x + (p.y - o.y) * m.y + (p.z - o.z) * m.z;
+  vec3 d = n - m;
+  float len = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  if (!(height > 0.0) || !(len > 1e-3))
+  {
+    return vec3(1.0);
+  }
+  float down = -(d.x * m.x + d.y * m.y + d.z * m.z) / len;
+  if (!(down > 0.0))
+  {
+    return vec3(1.0);
+  }
+  // Far along a grazing direction the plane point says little: at most 4 h.
+  float t = height / max(down, 0.25);
+  vec3 q = p + t * d / len;
+  float g[PGI_SH_N2];
+  if (pgiVisibilityOf(q, m, planesInLogSpace, g) <= 0)
+  {
+    return vec3(1.0);
+  }
+  vec3 lit = pgiShade(m, g);
+  vec3 open = pgiShadeUnshadowed(m);
+  return vec3(open.r > 0.0 ? clamp(lit.r / open.r, 0.0, 1.0) : 1.0,
+    open.g > 0.0 ? clamp(lit.g / open.g, 0.0, 1.0) : 1.0,
+    open.b > 0.0 ? clamp(lit.b / open.b, 0.0, 1.0) : 1.0);
 }
 
 // The receiver's one-bounce light from the summed proxy terms `sum`
-// (pgiProxyIndirect), the blocker planes as uniform secondary lights, and
-// xi from the visibility's DC coefficient (OverlapNormalization).
-vec3 pgiResolveIndirect(vec3 p, vec3 n, vec4 sum, float visibilityDC)
+// (pgiProxyIndirect), the blocker planes as uniform secondary lights
+// (dimmed by pgiPlaneShadowScale when planeShadows; planesInLogSpace: the
+// visibility's setting there), and xi from the visibility's DC coefficient
+// (OverlapNormalization).
+vec3 pgiResolveIndirectScaled(vec3 p, vec3 n, vec4 sum, float visibilityDC, bool planeShadows,
+  bool planesInLogSpace)
 {
   vec3 rgb = sum.rgb;
   float omega = sum.a;
@@ -107,7 +159,8 @@ vec3 pgiResolveIndirect(vec3 p, vec3 n, vec4 sum, float visibilityDC)
     {
       radiance += y[i] * pgiResponse[i];
     }
-    rgb += pgiPlaneAlbedo[k] * radiance * pgiCapWeight(0.5 * pgiPi, -pn, h);
+    vec3 scale = planeShadows ? pgiPlaneShadowScale(p, n, k, planesInLogSpace) : vec3(1.0);
+    rgb += pgiPlaneAlbedo[k] * scale * radiance * pgiCapWeight(0.5 * pgiPi, -pn, h);
   }
   if (!(omega > 0.0))
   {
@@ -116,4 +169,9 @@ vec3 pgiResolveIndirect(vec3 p, vec3 n, vec4 sum, float visibilityDC)
   float covered = 4.0 * pgiPi - pgiSqrtFourPi * visibilityDC;
   float xi = clamp(covered / omega, 0.0, 1.0);
   return max(xi * rgb, vec3(0.0));
+}
+
+vec3 pgiResolveIndirect(vec3 p, vec3 n, vec4 sum, float visibilityDC)
+{
+  return pgiResolveIndirectScaled(p, n, sum, visibilityDC, false, true);
 }

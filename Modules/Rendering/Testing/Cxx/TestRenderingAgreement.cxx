@@ -1,12 +1,16 @@
 // GPU per-vertex output read back (transform feedback) against the CPU
-// filter vtkPGIGlobalIllumination: DirectShadowed and Visibility, SH orders
-// 3 and 4, on
+// filter vtkPGIGlobalIllumination: Radiance (direct, plus the one-bounce
+// unshadowed indirect light where switched on) and Visibility, SH orders
+// 3 and 4, both with their defaults (planes carried by the light) and with
+// the planes in log space, on
 //  - a sphere over a plane (plane, and the sphere over a ground blocker),
 //  - a harder scene: five overlapping spheres, receivers on them, inside
 //    them (a shell through the cluster) and a tilted plane cutting them,
 // under a coloured synthetic sky with a sun. Also: the actor's matrix (a
 // moved actor matches the CPU on moved points), shadows off, a per-point
-// albedo array. The CPU runs its product-matrix shading path (the GPU's);
+// albedo array, indirect light from coloured proxies and a grey ground
+// (with and without PlaneBounceShadows), local lights (spherical and point).
+// The CPU runs its product-matrix shading path (the GPU's);
 // the difference to its default tabulated path is reported too.
 #include "pgiOffscreenWindow.h"
 #include "pgiRenderingTestScenes.h"
@@ -87,12 +91,19 @@ struct Case
   std::vector<std::array<double, 6>> Planes;
   vtkSmartPointer<vtkTransform> Transform; // actor's; the CPU gets moved points
   bool Shadows = true;
+  int PlaneBlocking = vtkPGIGlobalIllumination::PLANES_IN_LIGHT; // both defaults
+  bool Indirect = false;
+  bool PlaneBounceShadows = true; // both defaults
+  std::array<double, 3> PlaneAlbedo = { 0, 0, 0 };
+  vtkSmartPointer<vtkPGILighting> Lighting; // with local lights; else the sky
 };
 
 // Renders the receivers with the GI mapper, reads back, runs the CPU filter.
-void Compare(vtkRenderWindow* window, vtkPGILighting* lighting, const Case& c, int order,
+void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int order,
   double maxRadianceBound, double maxVisibilityBound, bool strict)
 {
+  vtkPGILighting* lighting = c.Lighting ? c.Lighting.Get() : sky;
+  const bool local = !lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty();
   vtkNew<vtkPGIGIPolyDataMapper> mapper;
   mapper->SetInputData(c.Receivers);
   mapper->SetProxies(c.Proxies);
@@ -100,9 +111,15 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* lighting, const Case& c, i
   mapper->SetOrder(order);
   mapper->SetShadows(c.Shadows);
   mapper->CaptureVisibilityOn();
+  if (c.PlaneBlocking != vtkPGIGIPolyDataMapper::PLANES_IN_LIGHT)
+  {
+    mapper->SetPlaneBlocking(c.PlaneBlocking);
+  }
+  mapper->SetIndirect(c.Indirect);
+  mapper->SetPlaneBounceShadows(c.PlaneBounceShadows);
   for (const auto& p : c.Planes)
   {
-    mapper->AddBlockerPlane(p.data(), p.data() + 3);
+    mapper->AddBlockerPlane(p.data(), p.data() + 3, c.PlaneAlbedo.data());
   }
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
@@ -140,22 +157,46 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* lighting, const Case& c, i
     gi->SetLighting(lighting);
     gi->SetOrder(order);
     gi->SetShadows(c.Shadows);
-    gi->IndirectOff();
-    gi->LocalLightsOff();
+    gi->SetIndirect(c.Indirect);
+    gi->SetPlaneBounceShadows(c.PlaneBounceShadows);
+    gi->SetLocalLights(local);
     gi->SetShadingPath(path);
-    // The mapper accumulates planes in log space, as the filter did before.
-    gi->SetPlaneBlocking(vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE);
+    if (c.PlaneBlocking != vtkPGIGlobalIllumination::PLANES_IN_LIGHT)
+    {
+      gi->SetPlaneBlocking(c.PlaneBlocking);
+    }
     for (const auto& p : c.Planes)
     {
-      gi->AddBlockerPlane(p.data(), p.data() + 3);
+      gi->AddBlockerPlane(p.data(), p.data() + 3, c.PlaneAlbedo.data());
     }
     gi->Update();
     return vtkSmartPointer<vtkPolyData>(gi->GetOutput());
   };
   vtkSmartPointer<vtkPolyData> matrix = run(vtkPGIGlobalIllumination::SHADING_PRODUCT_MATRIX);
   vtkSmartPointer<vtkPolyData> table = run(vtkPGIGlobalIllumination::SHADING_TABLE);
-  vtkDataArray* cpu = matrix->GetPointData()->GetArray("DirectShadowed");
-  vtkDataArray* cpuTable = table->GetPointData()->GetArray("DirectShadowed");
+  vtkDataArray* cpu = matrix->GetPointData()->GetArray("Radiance");
+  vtkDataArray* cpuTable = table->GetPointData()->GetArray("Radiance");
+  vtkDataArray* cpuIndirect = matrix->GetPointData()->GetArray("IndirectProxy");
+  double indirectPeak = 0.0;
+  for (vtkIdType i = 0; i < cpuIndirect->GetNumberOfTuples(); ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      indirectPeak = std::max(indirectPeak, std::fabs(cpuIndirect->GetComponent(i, k)));
+    }
+  }
+  // The indirect and local light must be there when asked for, and only then.
+  PGI_CHECK(c.Indirect ? indirectPeak > 1e-3 : indirectPeak == 0.0);
+  vtkDataArray* cpuLocal = matrix->GetPointData()->GetArray("LocalLights");
+  double localPeak = 0.0;
+  for (vtkIdType i = 0; i < cpuLocal->GetNumberOfTuples(); ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      localPeak = std::max(localPeak, std::fabs(cpuLocal->GetComponent(i, k)));
+    }
+  }
+  PGI_CHECK(local ? localPeak > 1e-3 : localPeak == 0.0);
   vtkDataArray* cpuVisibility = matrix->GetPointData()->GetArray("Visibility");
   Errors rad, vis, tab;
   const vtkIdType n = c.Receivers->GetNumberOfPoints();
@@ -187,10 +228,11 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* lighting, const Case& c, i
       }
     }
   }
-  std::printf("%-28s order %d, %5lld vertices: DirectShadowed max %.2e RMS %.2e (rel. max %.2e, "
-              "rel. RMS %.2e); Visibility max %.2e RMS %.2e; vs CPU table path max %.2e\n",
+  std::printf("%-28s order %d, %5lld vertices: Radiance max %.2e RMS %.2e (rel. max %.2e, "
+              "rel. RMS %.2e); Visibility max %.2e RMS %.2e; vs CPU table path max %.2e; "
+              "indirect peak %.3g, local peak %.3g\n",
     c.Name.c_str(), order, static_cast<long long>(n), rad.Max, rad.RMS(), rad.RelativeMax(),
-    rad.RelativeRMS(), vis.Max, vis.RMS(), tab.Max);
+    rad.RelativeRMS(), vis.Max, vis.RMS(), tab.Max, indirectPeak, localPeak);
   if (worstVertex >= 0 && worstVisibility > 1e-4)
   {
     double x[3], nn[3] = { 0, 0, 0 };
@@ -334,5 +376,76 @@ int TestRenderingAgreement(int, char*[])
     coloured.Receivers = copy;
   }
   Compare(window, lighting, coloured, 4, 1e-4, 1e-4, strict);
+
+  // The planes in log space (the filter's other PlaneBlocking).
+  for (const Case* base : { &sphere, &cluster })
+  {
+    Case logSpace = *base;
+    logSpace.Name = base->Name + ", log space";
+    logSpace.PlaneBlocking = vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE;
+    Compare(window, lighting, logSpace, 4, 1e-4, 1e-4, strict);
+  }
+
+  // One-bounce unshadowed indirect light: coloured proxies (their Albedo
+  // array), a grey ground, with the planes carried by the light and in log
+  // space, and with shadows off (the visibility still sets xi).
+  Case bounce = cluster;
+  bounce.Name = "indirect";
+  bounce.Indirect = true;
+  bounce.PlaneAlbedo = { 0.5, 0.4, 0.3 };
+  {
+    auto proxies = vtkSmartPointer<vtkPolyData>::New();
+    proxies->DeepCopy(cluster.Proxies);
+    vtkNew<vtkFloatArray> albedo;
+    albedo->SetName("Albedo");
+    albedo->SetNumberOfComponents(3);
+    albedo->SetNumberOfTuples(proxies->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
+    {
+      albedo->SetTuple3(i, 0.9 - 0.15 * i, 0.2 + 0.15 * i, i == 2 ? 0.0 : 0.6);
+    }
+    proxies->GetPointData()->AddArray(albedo);
+    bounce.Proxies = proxies;
+  }
+  for (int order : { 3, 4 })
+  {
+    Compare(window, lighting, bounce, order, 1e-4, 1e-4, strict);
+  }
+  Case bounceLog = bounce;
+  bounceLog.Name = "indirect, log space";
+  bounceLog.PlaneBlocking = vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE;
+  Compare(window, lighting, bounceLog, 4, 1e-4, 1e-4, strict);
+  Case bounceOpen = bounce;
+  bounceOpen.Name = "indirect, open plane bounce";
+  bounceOpen.PlaneBounceShadows = false;
+  Compare(window, lighting, bounceOpen, 4, 1e-4, 1e-4, strict);
+  Case bounceFlat = bounce;
+  bounceFlat.Name = "indirect, shadows off";
+  bounceFlat.Shadows = false;
+  Compare(window, lighting, bounceFlat, 4, 1e-4, 1e-4, strict);
+
+  // Local lights: two spherical lights (one small, below the table's first
+  // theta node; one large and near) and a point light, over the sky, with
+  // the proxies' shadows and the indirect light; and with shadows off.
+  Case lit = bounce;
+  lit.Name = "local lights";
+  lit.Lighting = vtkSmartPointer<vtkPGILighting>::New();
+  lit.Lighting->SetEnvironmentImage(pgitest::Sky());
+  {
+    const double c1[3] = { 2.0, -1.0, 2.5 }, e1[3] = { 6.0, 5.0, 4.0 };
+    const double c2[3] = { -1.5, 1.5, 1.2 }, e2[3] = { 0.5, 0.8, 1.5 };
+    const double c3[3] = { 0.5, -2.0, 0.8 }, e3[3] = { 4.0, 3.0, 2.0 };
+    lit.Lighting->AddSphereLight(c1, 0.05, e1);
+    lit.Lighting->AddSphereLight(c2, 0.6, e2);
+    lit.Lighting->AddPointLight(c3, e3);
+  }
+  for (int order : { 3, 4 })
+  {
+    Compare(window, lighting, lit, order, 1e-4, 1e-4, strict);
+  }
+  Case litFlat = lit;
+  litFlat.Name = "local lights, shadows off";
+  litFlat.Shadows = false;
+  Compare(window, lighting, litFlat, 4, 1e-4, 1e-4, strict);
   return pgitest::Result();
 }

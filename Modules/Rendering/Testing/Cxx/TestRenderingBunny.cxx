@@ -133,8 +133,6 @@ int TestRenderingBunny(int argc, char* argv[])
   cpu->LocalLightsOff();
   cpu->SetShadingPath(vtkPGIGlobalIllumination::SHADING_PRODUCT_MATRIX);
   cpu->AddBlockerPlane(origin, up);
-  // The mapper accumulates planes in log space, as the filter did before.
-  cpu->SetPlaneBlocking(vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE);
   cpu->Update();
   vtkDataArray* reference = cpu->GetOutput()->GetPointData()->GetArray("DirectShadowed");
   double worst = 0.0, peak = 0.0, sq = 0.0, ref = 0.0;

@@ -9,6 +9,7 @@
 #include "pgiTesting.h"
 
 #include "pgiEnvironmentShading.h"
+#include "pgiIndirectLight.h"
 #include "pgiSHBasis.h"
 #include "pgiSHExp.h"
 #include "pgiSHLightTables.h"
@@ -19,6 +20,7 @@
 
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkRenderWindow.h"
+#include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
@@ -572,6 +574,188 @@ int TestRenderingGLSLTwins(int, char*[])
         Report("pgiShade vs Shade (matrix path)", order, shaded, 2e-4);
         Report("pgiShadeUnshadowed vs C++", order, unshadowed, 2e-6);
       }
+
+      // Planes carried by the light (PLANES_IN_LIGHT): the visibility
+      // without the planes in log space, light 1 (a second light, as
+      // LightAbovePlanes would build it) and which receivers it serves; the
+      // one-bounce unshadowed indirect light (averaged operator, xi) from
+      // proxies with albedo and a plane with albedo, against
+      // IndirectExitRadiance.
+      std::vector<double> ar(n2), ag(n2), ab(n2);
+      for (int i = 0; i < n2; ++i)
+      {
+        ar[i] = i == 0 ? 2.0 : random.Uniform(-0.4, 0.4);
+        ag[i] = i == 0 ? 1.8 : random.Uniform(-0.4, 0.4);
+        ab[i] = i == 0 ? 1.5 : random.Uniform(-0.4, 0.4);
+      }
+      harness.Resources().SetLightAbovePlanes(ar.data(), ag.data(), ab.data());
+      proxygi::Blockers lit;
+      std::vector<float> albedos;
+      for (std::size_t b = 0; b < blockers.Spheres(); ++b)
+      {
+        const float a[3] = { static_cast<float>(random.Uniform(0, 1)),
+          static_cast<float>(random.Uniform(0, 1)), b == 3 ? 0.0f : 0.5f };
+        lit.AddSphere(blockers.X[b], blockers.Y[b], blockers.Z[b], blockers.R[b], a);
+        albedos.insert(albedos.end(), a, a + 3);
+      }
+      const float planeAlbedo[3] = { 0.6f, 0.5f, 0.4f };
+      lit.AddPlane(planeO, planeN, planeAlbedo);
+      const proxygi::SecondaryLights secondary(order, lr.data(), lg.data(), lb.data(), &lit);
+      std::vector<float> response(3 * n2), planeAlbedos(3 * proxygi::gpu::MaxPlanes, 0.0f);
+      for (int i = 0; i < n2; ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          response[3 * i + c] = secondary.Response[c * n2 + i];
+        }
+      }
+      std::copy(planeAlbedo, planeAlbedo + 3, planeAlbedos.begin());
+      const std::string declarations = proxygi::gpu::IndirectLibrarySource() +
+        "\nuniform vec3 pgiTwinAlbedo[" + std::to_string(blockers.Spheres()) + "];\n";
+      const std::string lightBody = std::string("  vec3 p = pgiIn0.xyz, n = pgiIn1.xyz;\n") +
+        "  float g[PGI_SH_N2], gLog[PGI_SH_N2];\n"
+        "  int used = pgiVisibilityOf(p, n, false, g);\n"
+        "  pgiOut0 = vec4(pgiShadeOf(1, n, g), float(used));\n"
+        "  pgiOut1 = vec4(pgiShadeUnshadowedOf(1, n), pgiAboveEveryPlane(p) ? 1.0 : 0.0);\n"
+        "  int usedLog = pgiVisibility(p, n, gLog);\n"
+        "  vec4 sum = vec4(0.0);\n"
+        "  for (int s = 0; s < pgiNumProxies; ++s)\n"
+        "  {\n"
+        "    vec4 sphere = texelFetch(pgiProxyTexture,\n"
+        "      ivec2(s % pgiProxyTextureWidth, s / pgiProxyTextureWidth), 0);\n"
+        "    sum += pgiProxyIndirectTerm(p, n, sphere, pgiTwinAlbedo[s]);\n"
+        "  }\n"
+        "  pgiOut2 = vec4(usedLog >= 0 ? pgiResolveIndirect(p, n, sum, gLog[0]) : vec3(0.0), "
+        "float(usedLog));\n"
+        "  pgiOut3 = vec4(pgiPlaneShadowScale(p, n, 0, false), 0.0);\n" +
+        Pack("g", n2, 4);
+      const auto uniforms = [&](vtkShaderProgram* program)
+      {
+        program->SetUniform3fv("pgiTwinAlbedo", static_cast<int>(blockers.Spheres()),
+          albedos.data());
+        program->SetUniform3fv("pgiResponse", n2, response.data());
+        program->SetUniform3fv("pgiPlaneAlbedo", proxygi::gpu::MaxPlanes, planeAlbedos.data());
+        program->SetUniformf("pgiPlaneTolerance", 0.0f);
+      };
+      // Orders 3 and 4 (at 6 the shader is the costliest of the test to
+      // compile on llvmpipe, and its parts are checked at 6 above).
+      const bool lightRan = order <= 4 &&
+        harness.Run(order, declarations, lightBody, 2, 4 + gOuts, in, out, uniforms);
+      if (lightRan)
+      {
+        proxygi::SoftShadowSettings settings;
+        settings.Order = order;
+        const proxygi::SoftShadows shadowsLog(settings);
+        settings.PlanesInLogSpace = false;
+        const proxygi::SoftShadows shadows(settings);
+        const proxygi::EnvironmentShading above(
+          order, ar.data(), ag.data(), ab.data(), proxygi::EnvironmentShading::Path::ProductMatrix);
+        const proxygi::EnvironmentShading open(
+          order, lr.data(), lg.data(), lb.data(), proxygi::EnvironmentShading::Path::ProductMatrix);
+        Stats visibility, shaded, unshadowed, bounce, planeScale;
+        int scaled = 0;
+        int sameUsed = 0, sameAbove = 0;
+        const int stride = 4 * (4 + gOuts);
+        std::vector<proxygi::SeenBlocker> seen;
+        for (int s = 0; s < samples; ++s)
+        {
+          const float* p = &in[8 * s];
+          const float* nrm = &in[8 * s + 4];
+          float g[sh::MaxCoefficients], rgb[3], flat[3], indirect[3];
+          sh::Status status;
+          const int used = shadows.Visibility(p, nrm, lit, g, status);
+          above.Shade(nrm, g, rgb);
+          above.ShadeUnshadowed(nrm, flat);
+          const bool isAbove = (p[2] - planeO[2]) * planeN[2] > 0.0f;
+          seen.clear();
+          shadowsLog.Visibility(p, nrm, lit, g, status, &seen);
+          if (status != sh::Status::Ok)
+          {
+            seen.clear();
+          }
+          proxygi::IndirectExitRadiance(
+            proxygi::IndirectOperator::Averaged, secondary, lit, seen, g[0], nrm, indirect);
+          const float* row = &out[stride * s];
+          sameUsed += static_cast<int>(row[3]) == used ? 1 : 0;
+          sameAbove += (row[7] > 0.5f) == isAbove ? 1 : 0;
+          for (int c = 0; c < 3; ++c)
+          {
+            shaded.Add(row[c], rgb[c]);
+            unshadowed.Add(row[4 + c], flat[c]);
+            bounce.Add(row[8 + c], indirect[c]);
+          }
+          float scale[3];
+          proxygi::PlaneShadowScale(shadows, open, lit, 0, p, nrm, scale);
+          for (int c = 0; c < 3; ++c)
+          {
+            planeScale.Add(row[12 + c], scale[c]);
+          }
+          scaled += scale[0] < 0.99f ? 1 : 0;
+          shadows.Visibility(p, nrm, lit, g, status);
+          for (int i = 0; i < n2; ++i)
+          {
+            visibility.Add(row[16 + i], g[i]);
+          }
+        }
+        std::printf("  pgiVisibilityOf (planes in the light): same number of blockers for %d of "
+                    "%d receivers; pgiAboveEveryPlane agrees for %d\n",
+          sameUsed, samples, sameAbove);
+        PGI_CHECK(sameUsed >= samples - 2);
+        PGI_CHECK(sameAbove == samples);
+        Report("pgiVisibilityOf (no planes)", order, visibility, 2e-4);
+        Report("pgiShadeOf(1) vs Shade", order, shaded, 2e-4);
+        Report("pgiShadeUnshadowedOf(1) vs C++", order, unshadowed, 2e-6);
+        Report("pgiProxyIndirectTerm+Resolve", order, bounce, 2e-4);
+        std::printf("  pgiPlaneShadowScale: %d of %d receivers see a shadowed plane point\n",
+          scaled, samples);
+        PGI_CHECK(scaled > samples / 20);
+        Report("pgiPlaneShadowScale vs C++", order, planeScale, 2e-4);
+      }
+      else if (order <= 4)
+      {
+        std::printf("FAILED harness: %s\n", harness.GetError().c_str());
+        ++pgitest::Failures();
+      }
+      harness.Resources().SetLightAbovePlanes(nullptr, nullptr, nullptr);
+    }
+
+    // The analytic spherical-light L_H (local lights) against
+    // AnalyticLightTables::Evaluate (float path): normals, directions all
+    // round (some below the horizon, some at the zenith), angular radii
+    // over the table.
+    {
+      harness.Resources().SetAnalyticLightTable(true);
+      const sh::AnalyticLightTables& lobes = sh::AnalyticLightTables::Get(order);
+      in.assign(8 * samples, 0.0f);
+      for (int s = 0; s < samples; ++s)
+      {
+        random.Direction(&in[8 * s]);
+        random.Direction(&in[8 * s + 4]);
+        if (s % 50 == 0)
+        {
+          std::copy(&in[8 * s], &in[8 * s] + 3, &in[8 * s + 4]); // light at the zenith
+        }
+        in[8 * s + 3] = static_cast<float>(random.Uniform(0.0, 0.5 * sh::Pi));
+      }
+      if (run("  float lh[PGI_SH_N2];\n"
+              "  pgiAnalyticLight(pgiIn0.xyz, pgiIn1.xyz, pgiIn0.w, lh);\n" +
+            Pack("lh", n2, 0),
+            2, Vec4s(n2)))
+      {
+        Stats lh;
+        for (int s = 0; s < samples; ++s)
+        {
+          const float* row = &in[8 * s];
+          float ref[sh::MaxCoefficients];
+          lobes.Evaluate(row, row + 4, row[3], ref);
+          for (int i = 0; i < n2; ++i)
+          {
+            lh.Add(out[4 * Vec4s(n2) * s + i], ref[i]);
+          }
+        }
+        Report("pgiAnalyticLight vs Evaluate", order, lh, 2e-4);
+      }
+      harness.Resources().SetAnalyticLightTable(false);
     }
   }
   return pgitest::Result();

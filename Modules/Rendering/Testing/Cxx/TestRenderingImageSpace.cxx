@@ -160,6 +160,8 @@ int TestRenderingImageSpace(int argc, char* argv[])
     m->SetExposure(0.3); // the sun would saturate most pixels
   }
   ballGI->AddBlockerPlane(origin, up);
+  // The image-space pass accumulates the planes in log space.
+  ballGI->SetPlaneBlocking(vtkPGIGIPolyDataMapper::PLANES_IN_LOG_SPACE);
   vtkNew<vtkActor> planeGIActor, ballGIActor;
   planeGIActor->SetMapper(planeGI);
   ballGIActor->SetMapper(ballGI);
