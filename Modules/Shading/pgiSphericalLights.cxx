@@ -1,17 +1,26 @@
 #include "pgiSphericalLights.h"
 
 #include "pgiEnvironmentShading.h"
+#include "pgiMaterial.h"
 #include "pgiSHLightTables.h"
+#include "pgiSHSphericalLight.h"
 #include "pgiSHTables.h"
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
 
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkMath.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 
 namespace proxygi
 {
@@ -417,6 +426,200 @@ long ShadowedIndirect::UpdateRadiance(SphericalLights& lights, const SphericalLi
       failures += localFailures;
     });
   return failures.load();
+}
+
+std::string PrepareSphericalLights(vtkPolyData* proxies, const std::vector<vtkIdType>& leafIds,
+  vtkDataArray* levels, int order, const char* albedoArray, const double defaultAlbedo[3],
+  const proxygi::EnvironmentShading& shading, bool dark, const proxygi::Blockers& blockers,
+  const proxygi::LocalEmitters* emitters, const proxygi::ShadowedIndirect& kernel,
+  proxygi::SphericalLights& lights, std::string& summary, std::string& error)
+{
+  if (leafIds.empty())
+  {
+    return "no proxies to act as spherical lights";
+  }
+  if (dark && !emitters)
+  {
+    return "the environment is black and there are no local lights";
+  }
+  const int n2 = order * order;
+  vtkPointData* pd = proxies->GetPointData();
+  vtkDataArray* radius = pd->GetArray("Radius");
+  vtkDataArray* objectIds = pd->GetArray("ObjectId");
+  vtkDataArray* offsets = pd->GetArray("SampleOffset");
+  vtkDataArray* normals = pd->GetArray("SampleNormal");
+  vtkDataArray* albedoSH = pd->GetArray("AlbedoSH");
+  lights.Order = order;
+  proxygi::SphericalLightSamples samples;
+  std::vector<double> directions;
+  const bool fromMesh = offsets && normals &&
+    offsets->GetNumberOfComponents() == normals->GetNumberOfComponents() &&
+    offsets->GetNumberOfComponents() % 3 == 0;
+  if (fromMesh)
+  {
+    const int m = offsets->GetNumberOfComponents() / 3;
+    vtkDataArray* given = proxies->GetFieldData()->GetArray("SampleDirections");
+    if (given && given->GetNumberOfTuples() == m && given->GetNumberOfComponents() == 3)
+    {
+      directions.resize(3 * m);
+      for (int j = 0; j < m; ++j)
+      {
+        given->GetTuple(j, &directions[3 * j]);
+      }
+    }
+    else
+    {
+      directions = proxygi::sh::GeodesicDirections(3);
+      if (static_cast<int>(directions.size()) != 3 * m)
+      {
+        error = "SampleOffset has " + std::to_string(m) +
+          " samples per proxy but no SampleDirections field array matches them";
+        return "bad samples";
+      }
+    }
+  }
+  else
+  {
+    directions = proxygi::sh::GeodesicDirections(3);
+  }
+  const int m = static_cast<int>(directions.size() / 3);
+  samples.Directions = m;
+  const std::size_t count = leafIds.size();
+  samples.Position.assign(count * m * 3, 0.0f);
+  samples.Normal.assign(count * m * 3, 0.0f);
+  samples.AlbedoSH.assign(count * 3 * n2, 0.0f);
+  std::vector<double> row;
+  long found = 0;
+  bool anyAlbedo = false;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const vtkIdType id = leafIds[i];
+    double c[3];
+    proxies->GetPoint(id, c);
+    const double r = radius->GetTuple1(id);
+    lights.Add(float(c[0]), float(c[1]), float(c[2]), float(r),
+      objectIds ? static_cast<int>(objectIds->GetTuple1(id)) : 0);
+    if (levels)
+    {
+      lights.Level.push_back(static_cast<int>(levels->GetTuple1(id)));
+    }
+    for (int j = 0; j < m; ++j)
+    {
+      double o[3], nn[3];
+      if (fromMesh)
+      {
+        o[0] = offsets->GetComponent(id, 3 * j);
+        o[1] = offsets->GetComponent(id, 3 * j + 1);
+        o[2] = offsets->GetComponent(id, 3 * j + 2);
+        nn[0] = normals->GetComponent(id, 3 * j);
+        nn[1] = normals->GetComponent(id, 3 * j + 1);
+        nn[2] = normals->GetComponent(id, 3 * j + 2);
+      }
+      else
+      {
+        // The sphere itself is the surface: the sample in w_j is c + r w_j.
+        for (int k = 0; k < 3; ++k)
+        {
+          o[k] = nn[k] = directions[3 * j + k];
+        }
+      }
+      const double len = vtkMath::Norm(nn);
+      if (!(len > 0.0) || !std::isfinite(len) || !std::isfinite(vtkMath::Norm(o)))
+      {
+        continue;
+      }
+      float* pos = &samples.Position[(i * m + j) * 3];
+      float* nor = &samples.Normal[(i * m + j) * 3];
+      for (int k = 0; k < 3; ++k)
+      {
+        pos[k] = static_cast<float>(c[k] + r * o[k]);
+        nor[k] = static_cast<float>(nn[k] / len);
+      }
+      ++found;
+    }
+    float* albedo = &samples.AlbedoSH[i * 3 * n2];
+    const int k2 = albedoSH ? albedoSH->GetNumberOfComponents() / 3 : 0;
+    const int k = static_cast<int>(std::lround(std::sqrt(double(k2))));
+    if (albedoSH && k > 0 && k * k == k2 && 3 * k2 == albedoSH->GetNumberOfComponents())
+    {
+      // Per-vertex colour, sampled by vtkPGISphereLightSampler: truncate or pad.
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        for (int t = 0; t < std::min(k2, n2); ++t)
+        {
+          const double v = albedoSH->GetComponent(id, ch * k2 + t);
+          albedo[ch * n2 + t] = std::isfinite(v) ? static_cast<float>(v) : 0.0f;
+        }
+      }
+    }
+    else
+    {
+      double a[3];
+      proxygi::AlbedoOf(proxies, albedoArray, id, defaultAlbedo, a);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        albedo[ch * n2] = static_cast<float>(a[ch] * proxygi::sh::SqrtFourPi);
+      }
+    }
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      anyAlbedo = anyAlbedo || albedo[ch * n2] > 0.0f;
+    }
+  }
+  if (!fromMesh)
+  {
+    // Rule 2 on the spheres: a point inside another sphere of the object is hidden.
+    lights.Finish();
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      for (int j = 0; j < m; ++j)
+      {
+        float* pos = &samples.Position[(i * m + j) * 3];
+        for (std::size_t q = 0; q < count; ++q)
+        {
+          if (!lights.Intersects[i * count + q])
+          {
+            continue;
+          }
+          const float dx = pos[0] - lights.X[q], dy = pos[1] - lights.Y[q],
+                      dz = pos[2] - lights.Z[q];
+          if (dx * dx + dy * dy + dz * dz < lights.R[q] * lights.R[q])
+          {
+            std::fill(pos, pos + 3, 0.0f);
+            std::fill(&samples.Normal[(i * m + j) * 3], &samples.Normal[(i * m + j) * 3] + 3, 0.0f);
+            --found;
+            break;
+          }
+        }
+      }
+    }
+  }
+  if (!anyAlbedo)
+  {
+    return "every spherical light has albedo 0";
+  }
+  if (found <= 0)
+  {
+    return "no surface samples";
+  }
+  lights.Finish();
+  const std::vector<double> voronoi = proxygi::sh::VoronoiBasisSums(order, directions);
+  samples.Voronoi.assign(voronoi.begin(), voronoi.end());
+  const auto start = std::chrono::steady_clock::now();
+  const long failed = kernel.UpdateRadiance(lights, samples, blockers, shading, emitters);
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ostringstream line;
+  line << count << " spherical lights, " << found << " surface samples of " << count * m << " ("
+       << (fromMesh ? "SampleOffset/SampleNormal arrays" : "on the spheres themselves") << "), "
+       << (albedoSH ? "AlbedoSH" : "per-object albedo") << ", first pass " << seconds << " s"
+       << (emitters ? " (with local lights)" : "");
+  if (failed > 0)
+  {
+    line << ", " << failed << " samples left unlit (non-finite SH)";
+  }
+  summary = line.str();
+  return "";
 }
 
 } // namespace proxygi

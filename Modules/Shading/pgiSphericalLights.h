@@ -34,8 +34,14 @@
 
 #include "pgiSoftShadows.h"
 
+#include "vtkType.h"
+
 #include <cstdint>
+#include <string>
 #include <vector>
+
+class vtkDataArray;
+class vtkPolyData;
 
 namespace proxygi
 {
@@ -132,6 +138,23 @@ private:
   SoftShadowSettings Settings;
   SphericalLightBlocking Blocking;
 };
+
+/**
+ * The spherical lights of the shadowed bounce from the proxies and their
+ * first pass (vtkPGIGlobalIllumination and vtkPGIGIPolyDataMapper share
+ * it). `leafIds`: the proxies that are lights; `levels` (may be null): their
+ * Level array. Surface samples come from the proxies' SampleOffset and
+ * SampleNormal arrays (vtkPGISphereLightSampler) or else lie on the spheres;
+ * albedo from AlbedoSH, else `albedoArray`, else `defaultAlbedo`. `shading`
+ * lights the samples, `blockers` shadow them, `emitters` (may be null) add
+ * local lights. Returns "" when the lights are ready, else why the bounce is
+ * skipped; `error` is set for bad input; `summary` says what ran.
+ */
+PROXYGISHADING_EXPORT std::string PrepareSphericalLights(vtkPolyData* proxies,
+  const std::vector<vtkIdType>& leafIds, vtkDataArray* levels, int order, const char* albedoArray,
+  const double defaultAlbedo[3], const EnvironmentShading& shading, bool dark,
+  const Blockers& blockers, const LocalEmitters* emitters, const ShadowedIndirect& kernel,
+  SphericalLights& lights, std::string& summary, std::string& error);
 
 } // namespace proxygi
 
