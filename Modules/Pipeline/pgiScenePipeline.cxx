@@ -19,6 +19,7 @@
 #include "vtkPolyDataNormals.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
+#include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
 #include <chrono>
@@ -26,7 +27,6 @@
 #include <fstream>
 #include <functional>
 #include <sstream>
-#include <sys/stat.h>
 
 namespace proxygi
 {
@@ -114,13 +114,13 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(const LoadedScene& load
   return receivers;
 }
 
-bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded,
-  int spheresPerMesh, const std::string& cacheDir, SceneProxies& proxies, std::string& error)
+bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded, int spheresPerMesh,
+  const std::string& cacheDir, SceneProxies& proxies, std::string& error)
 {
   const auto t0 = Clock::now();
   if (!cacheDir.empty())
   {
-    mkdir(cacheDir.c_str(), 0755);
+    vtksys::SystemTools::MakeDirectory(cacheDir); // with its parents
   }
   vtkNew<vtkPoints> centres;
   vtkNew<vtkFloatArray> radii, albedos;
@@ -162,9 +162,8 @@ bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded,
       objectIds->InsertNextValue(static_cast<int>(k));
       continue;
     }
-    const std::string cached = cacheDir.empty()
-      ? std::string()
-      : cacheDir + "/proxies-" +
+    const std::string cached = cacheDir.empty() ? std::string()
+                                                : cacheDir + "/proxies-" +
         Key(Describe(object) + '|' + std::to_string(spheresPerMesh) + '|' +
           std::to_string(mesh->GetNumberOfPoints())) +
         ".vtp";
@@ -271,14 +270,13 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(const SceneDescription&
   seconds = 0.0;
   if (!cacheDir.empty())
   {
-    mkdir(cacheDir.c_str(), 0755);
+    vtksys::SystemTools::MakeDirectory(cacheDir); // with its parents
   }
   const std::string sceneKey = DescribeScene(scene);
   for (std::size_t k = 0; k < receivers.size(); ++k)
   {
-    const std::string cached = cacheDir.empty()
-      ? std::string()
-      : cacheDir + "/reference-" +
+    const std::string cached = cacheDir.empty() ? std::string()
+                                                : cacheDir + "/reference-" +
         Key(sceneKey + '|' + std::to_string(k) + '|' +
           std::to_string(receivers[k]->GetNumberOfPoints()) +
           (proxies ? "|proxies" + std::to_string(proxies->Leaves) : std::string()) +
