@@ -34,9 +34,10 @@ const char* Usage = R"(usage: proxygi render [scene.json] [options]
 
 Renders a scene (default: the bunny over a ground plane under the forest map)
 with per-vertex SH soft shadows, one-bounce indirect light from the proxies
-and planes, and local lights (vtkPGIGlobalIllumination), offscreen through
-VTK; prints the plan, the time per stage and the per-vertex error against the
-Embree reference of the same scene (computed once, cached).
+and planes, and local lights, on the GPU (vtkPGIGIPolyDataMapper; EGL without
+a display) or on the CPU (vtkPGIGlobalIllumination); prints what ran, the time
+per stage and the per-vertex error against the Embree reference of the same
+scene (computed once, cached).
 
   -o FILE             output PNG (default proxygi-render.png)
   --cache DIR         proxies and references are cached here (proxygi-cache)
@@ -52,7 +53,10 @@ Embree reference of the same scene (computed once, cached).
   --exposure E        tone-mapping scale (default: 95th percentile to 0.8)
   --no-error          skip the reference and the error
   --vtp PREFIX        also write each object's per-vertex arrays to PREFIX-<name>.vtp
-  --mode M            vertex (default): per-vertex radiance from the CPU filter;
+  --mode M            gpu (default): per-vertex GI on the GPU (the GI mapper;
+                      every leaf sphere, no hierarchy cuts);
+                      vertex: per-vertex radiance from the CPU filter (with the
+                      plan and the direct light's own error);
                       image-space: the GPU image-space pass (receiver buffer,
                       splatting, HYB exp, indirect, bilateral upsampling), with
                       per-pass times

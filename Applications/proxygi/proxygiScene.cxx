@@ -6,13 +6,14 @@
 #include "proxygiCommands.h"
 #include "proxygiImage.h"
 
-#include "pgiScene.h"
 #include "pgiOffscreenWindow.h"
-#include "vtkPGIImageSpaceGIPass.h"
-#include "vtkPGIReferenceImage.h"
+#include "pgiScene.h"
 #include "pgiScenePipeline.h"
+#include "vtkPGIGIPolyDataMapper.h"
 #include "vtkPGIGlobalIllumination.h"
+#include "vtkPGIImageSpaceGIPass.h"
 #include "vtkPGILighting.h"
+#include "vtkPGIReferenceImage.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -35,10 +36,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <map>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 
 namespace proxygi
 {
@@ -62,19 +63,21 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   const int referenceSpp = static_cast<int>(NumberOption(args, "--reference-spp", 1024, ok));
   const std::string methodName = Option(args, "--method", "HYB");
   const std::string indirectName = Option(args, "--indirect", "shadowed");
-  const std::string mode = Option(args, "--mode", "vertex");
+  const std::string mode = Option(args, "--mode", "gpu");
   const double hierarchyAngle = NumberOption(args, "--hierarchy", 25.0, ok);
   const int receiverScale = static_cast<int>(NumberOption(args, "--scale", 2, ok));
   const int pixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
-  if ((mode != "vertex" && mode != "image-space") ||
+  if ((mode != "gpu" && mode != "vertex" && mode != "image-space") ||
     (receiverScale != 1 && receiverScale != 2 && receiverScale != 4 && receiverScale != 8) ||
     pixelSpp < 1)
   {
-    std::fprintf(stderr, "proxygi render: --mode vertex|image-space, --scale 1|2|4|8, "
-                         "--pixel-reference-spp >= 1\n");
+    std::fprintf(stderr,
+      "proxygi render: --mode gpu|vertex|image-space, --scale 1|2|4|8, "
+      "--pixel-reference-spp >= 1\n");
     return 2;
   }
   const bool imageSpace = mode == "image-space";
+  const bool gpu = mode == "gpu";
   const std::map<std::string, int> indirectModes = {
     { "shadowed", vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED },
     { "unshadowed", vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED },
@@ -96,8 +99,9 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     { "HYB", vtkPGIGlobalIllumination::EXP_HYB } };
   if (!methods.count(methodName) || order < 2 || order > 8 || spheres < 1 || referenceSpp < 1)
   {
-    std::fprintf(stderr, "proxygi render: need --method HYB|OL|PS*|PS, 2 <= --order <= 8, "
-                         "--spheres >= 1, --reference-spp >= 1\n");
+    std::fprintf(stderr,
+      "proxygi render: need --method HYB|OL|PS*|PS, 2 <= --order <= 8, "
+      "--spheres >= 1, --reference-spp >= 1\n");
     return 2;
   }
   SceneDescription scene = DefaultScene();
@@ -133,6 +137,10 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   std::vector<vtkSmartPointer<vtkPolyData>> shaded;
   for (auto& receivers : receiversIn)
   {
+    if (gpu)
+    {
+      break; // the GI mapper shades them while rendering
+    }
     vtkNew<vtkPGIGlobalIllumination> gi;
     gi->SetInputData(receivers);
     ConfigureGlobalIllumination(gi, scene, loaded, proxies);
@@ -150,25 +158,19 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       }
     }
   }
-  const auto t2 = Clock::now();
+  auto t2 = Clock::now();
   const std::string vtpPrefix = Option(args, "--vtp", "");
-  for (std::size_t k = 0; !vtpPrefix.empty() && k < shaded.size(); ++k)
-  {
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName((vtpPrefix + "-" + scene.Objects[k].Name + ".vtp").c_str());
-    writer->SetInputData(shaded[k]);
-    writer->SetDataModeToAppended();
-    writer->Write();
-  }
   vtkIdType receivers = 0;
-  for (auto& s : shaded)
+  for (auto& s : receiversIn)
   {
     receivers += s->GetNumberOfPoints();
   }
 
   // Offscreen picture: vertex radiance, tone-mapped, no VTK lighting.
+  // Exposure: the 95th percentile of the radiance to 0.8 (GPU: after the
+  // first frame, from the radiance read back).
   double exposure = NumberOption(args, "--exposure", 0.0, ok);
-  if (!(exposure > 0.0))
+  const auto automaticExposure = [&]()
   {
     std::vector<double> lum;
     for (auto& s : shaded)
@@ -182,9 +184,39 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     }
     const std::size_t k = lum.size() * 95 / 100;
     std::nth_element(lum.begin(), lum.begin() + k, lum.end());
-    exposure = lum[k] > 0.0 ? 0.8 / lum[k] : 1.0;
+    return lum[k] > 0.0 ? 0.8 / lum[k] : 1.0;
+  };
+  if (!(exposure > 0.0) && !gpu)
+  {
+    exposure = automaticExposure();
   }
   vtkNew<vtkRenderer> renderer;
+  // Per vertex on the GPU: the GI mapper set up as the filter would be.
+  std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> giMappers;
+  for (std::size_t k = 0; gpu && k < loaded.Objects.size(); ++k)
+  {
+    auto mapper = vtkSmartPointer<vtkPGIGIPolyDataMapper>::New();
+    mapper->SetInputData(receiversIn[k]);
+    mapper->SetProxies(proxies.Spheres);
+    mapper->SetLighting(loaded.Lighting);
+    for (const auto& plane : proxies.Planes)
+    {
+      mapper->AddBlockerPlane(plane.data(), plane.data() + 3, plane.data() + 6);
+    }
+    mapper->SetOrder(order);
+    mapper->SetShadows(scene.Shadows);
+    mapper->SetIndirect(scene.Indirect && indirectName != "off");
+    mapper->SetIndirectMode(indirectName == "shadowed"
+        ? vtkPGIGIPolyDataMapper::INDIRECT_MODE_SHADOWED
+        : vtkPGIGIPolyDataMapper::INDIRECT_MODE_UNSHADOWED);
+    mapper->SetLocalLights(scene.LocalLights);
+    mapper->SetAlbedo(scene.Objects[k].Albedo);
+    mapper->SetExposure(exposure > 0.0 ? exposure : 1.0);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    renderer->AddActor(actor);
+    giMappers.push_back(mapper);
+  }
   renderer->SetBackground(0.3, 0.3, 0.32);
   vtkNew<vtkPGIImageSpaceGIPass> pass;
   if (imageSpace)
@@ -218,7 +250,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   }
   for (auto& s : shaded)
   {
-    if (imageSpace)
+    if (imageSpace || gpu)
     {
       break;
     }
@@ -259,6 +291,51 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   window->SetSize(scene.Size[0], scene.Size[1]);
   window->AddRenderer(renderer);
   window->Render();
+  if (gpu)
+  {
+    // The first frame compiled the shaders and ran the GI pass; read the
+    // per-vertex radiance back (the error and the exposure need it), then
+    // time one frame that recomputes GI (as moving proxies would).
+    window->WaitForCompletion();
+    t2 = Clock::now();
+    for (std::size_t k = 0; k < giMappers.size(); ++k)
+    {
+      vtkNew<vtkFloatArray> radiance;
+      if (!giMappers[k]->GetPerVertexResults(radiance))
+      {
+        std::fprintf(stderr, "proxygi render: the GPU GI pass did not run (%s)\n",
+          giMappers[k]->GetGIStatus().c_str());
+        return 1;
+      }
+      radiance->SetName("Radiance");
+      auto result = vtkSmartPointer<vtkPolyData>::New();
+      result->ShallowCopy(receiversIn[k]);
+      result->GetPointData()->AddArray(radiance);
+      shaded.push_back(result);
+      std::printf("gpu: object %zu (%s): %s\n", k, scene.Objects[k].Name.c_str(),
+        giMappers[k]->GetGIStatus().c_str());
+    }
+    if (!(exposure > 0.0))
+    {
+      exposure = automaticExposure();
+    }
+    for (auto& mapper : giMappers)
+    {
+      mapper->SetExposure(exposure);
+      mapper->AlwaysRecomputeOn();
+    }
+    const auto f0 = Clock::now();
+    window->Render();
+    window->WaitForCompletion();
+    const auto f1 = Clock::now();
+    for (auto& mapper : giMappers)
+    {
+      mapper->AlwaysRecomputeOff();
+    }
+    std::printf("gpu per-vertex GI: first frame %.3f s (shaders, tables, spherical lights' first "
+                "pass, GI pass), a frame that recomputes GI %.1f ms\n",
+      Seconds(t1, t2), 1e3 * Seconds(f0, f1));
+  }
   if (imageSpace)
   {
     window->Render(); // the first frame builds shaders and tables
@@ -290,8 +367,8 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   if ((imageSpace || Flag(args, "--pixel-error")) && !Flag(args, "--no-error"))
   {
     const std::string cachedImage = cache + "/image-" +
-      std::to_string(std::hash<std::string>()(scene.Name + std::to_string(scene.Size[0]) + "x" +
-        std::to_string(scene.Size[1]))) +
+      std::to_string(std::hash<std::string>()(
+        scene.Name + std::to_string(scene.Size[0]) + "x" + std::to_string(scene.Size[1]))) +
       "-spp" + std::to_string(pixelSpp) + ".vti";
     vtkSmartPointer<vtkImageData> truth;
     if (std::ifstream(cachedImage))
@@ -361,10 +438,18 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     }
     std::printf("per pixel against the Embree image (%d samples, its own noise %.2f%%): relative "
                 "RMSE %.2f%% over %ld geometry pixels (8-bit sRGB picture)\n",
-      pixelSpp, ref > 0 ? 100 * std::sqrt(var / ref) : 0.0, ref > 0 ? 100 * std::sqrt(sq / ref) : 0.0,
-      used);
+      pixelSpp, ref > 0 ? 100 * std::sqrt(var / ref) : 0.0,
+      ref > 0 ? 100 * std::sqrt(sq / ref) : 0.0, used);
   }
 
+  for (std::size_t k = 0; !vtpPrefix.empty() && k < shaded.size(); ++k)
+  {
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetFileName((vtpPrefix + "-" + scene.Objects[k].Name + ".vtp").c_str());
+    writer->SetInputData(shaded[k]);
+    writer->SetDataModeToAppended();
+    writer->Write();
+  }
   std::printf("settings: SH order %d, exp %s, %lld proxy spheres, %zu planes, %lld receivers\n",
     order, methodName.c_str(), static_cast<long long>(proxies.Leaves), proxies.Planes.size(),
     static_cast<long long>(receivers));
@@ -383,19 +468,29 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
       return 1;
     }
+    // The GPU reads back the total only.
     for (std::size_t k = 0; k < shaded.size(); ++k)
     {
-      std::printf("object %zu (%s): relative RMSE against the reference: direct %.2f%%, "
-                  "total %.2f%%\n",
-        k, scene.Objects[k].Name.c_str(),
-        100 * RelativeRMSE(shaded, "DirectShadowed", reference, "DirectShadowed", { k }),
-        100 * RelativeRMSE(shaded, "Radiance", reference, "Radiance", { k }));
+      std::printf(
+        "object %zu (%s): relative RMSE against the reference: ", k, scene.Objects[k].Name.c_str());
+      if (!gpu)
+      {
+        std::printf("direct %.2f%%, ",
+          100 * RelativeRMSE(shaded, "DirectShadowed", reference, "DirectShadowed", { k }));
+      }
+      std::printf(
+        "total %.2f%%\n", 100 * RelativeRMSE(shaded, "Radiance", reference, "Radiance", { k }));
     }
     std::printf("error against the Embree reference (%d samples, %.1f s to trace, its own noise "
-                "%.2f%%): direct light %.2f%%, total with one-bounce indirect %.2f%% (relative "
-                "RMSE per vertex over all objects)\n",
-      referenceSpp, seconds, 100 * RelativeRMS(reference, "RadianceStdErr", "Radiance"),
-      100 * RelativeRMSE(shaded, "DirectShadowed", reference, "DirectShadowed"),
+                "%.2f%%): ",
+      referenceSpp, seconds, 100 * RelativeRMS(reference, "RadianceStdErr", "Radiance"));
+    if (!gpu)
+    {
+      std::printf("direct light %.2f%%, ",
+        100 * RelativeRMSE(shaded, "DirectShadowed", reference, "DirectShadowed"));
+    }
+    std::printf("total with one-bounce indirect %.2f%% (relative RMSE per vertex over all "
+                "objects)\n",
       100 * RelativeRMSE(shaded, "Radiance", reference, "Radiance"));
   }
   std::printf("wrote %s (exposure %.3g)\n", output.c_str(), exposure);

@@ -3,6 +3,7 @@
 #include "pgiGIComputeFS.h"
 #include "pgiGIHarnessVS.h"
 #include "pgiGILibrary.h"
+#include "pgiGISphericalLights.h"
 #include "pgiISLibrary.h"
 #include "pgiSHBasisGLSL.h"
 
@@ -12,6 +13,7 @@
 #include "pgiSHTables.h"
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
+#include "pgiSphericalLights.h"
 
 #include "vtkDataArray.h"
 #include "vtkNew.h"
@@ -146,6 +148,12 @@ std::string IndirectLibrarySource()
   return pgiISLibrary;
 }
 
+std::string SphericalLightsLibrarySource(int lights)
+{
+  const int size = 32 * std::max(1, (lights + 31) / 32);
+  return "#define PGI_MAX_SPHERICAL_LIGHTS " + std::to_string(size) + "\n" + pgiGISphericalLights;
+}
+
 //------------------------------------------------------------------------------
 struct GIResources::Internals
 {
@@ -159,8 +167,8 @@ struct GIResources::Internals
   int CapResolution = 0, OLResolution = 0;
   float CapThetaScale = 0.0f, OLScale = 0.0f;
   std::vector<float> TransferZH;
-  std::vector<float> Light;      // n2 x 3
-  std::vector<float> LightAbove; // n2 x 3, the light above the planes
+  std::vector<float> Light;           // n2 x 3
+  std::vector<float> LightAbove;      // n2 x 3, the light above the planes
   std::vector<float> LightMatrixData; // 2 n2 rows of n2 RGBA: L, then the light above
   bool AboveSet = false;
   bool LightDirty = false;
@@ -170,6 +178,13 @@ struct GIResources::Internals
   bool WantLobes = false;
   vtkSmartPointer<vtkTextureObject> Lobes;
   int LobeThetaResolution = 0, LobePhiResolution = 0;
+  // Spherical lights (shadowed bounce): geometry + object/ratio rows,
+  // radiance rows, intersecting partners (count, indices); w_theta. Uploaded on Bind when dirty.
+  std::vector<float> SLGeometry, SLRadiance, SLPartners;
+  int SLPartnerWidth = 1;
+  int SLCount = 0;
+  bool SLPerObject = false, SLDirty = false;
+  vtkSmartPointer<vtkTextureObject> SLGeometryTexture, SLRadianceTexture, SLPartnersTexture, WTable;
   int ProxyTextureWidth = 1;
   KernelSettings Settings;
 };
@@ -242,6 +257,10 @@ bool GIResources::SetOrder(vtkOpenGLRenderWindow* window, int order)
   d.LightDirty = true;
   d.BlockersDirty = true;
   d.Lobes = nullptr;
+  // Spherical lights of another order are stale: none until set again.
+  d.WTable = nullptr;
+  d.SLCount = 0;
+  d.SLDirty = true;
   return d.CapLog && d.OL && d.CapVis && d.DTable;
 }
 
@@ -326,6 +345,63 @@ double GIResources::GetAnalyticLightMinTheta() const
                    : 0.0;
 }
 
+void GIResources::SetSphericalLights(const SphericalLights* lights, bool perObject)
+{
+  Internals& d = *this->Impl;
+  d.SLCount = lights ? static_cast<int>(lights->Count()) : 0;
+  d.SLPerObject = perObject;
+  d.SLDirty = true;
+  d.SLGeometry.clear();
+  d.SLRadiance.clear();
+  d.SLPartners.clear();
+  if (d.SLCount == 0)
+  {
+    return;
+  }
+  const std::size_t count = static_cast<std::size_t>(d.SLCount);
+  const std::size_t n2 = static_cast<std::size_t>(lights->Order) * lights->Order;
+  d.SLGeometry.assign(8 * count, 0.0f);
+  d.SLRadiance.assign(4 * n2 * count, 0.0f);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    float* row0 = &d.SLGeometry[4 * i];
+    float* row1 = &d.SLGeometry[4 * (count + i)];
+    row0[0] = lights->X[i];
+    row0[1] = lights->Y[i];
+    row0[2] = lights->Z[i];
+    row0[3] = lights->R[i];
+    row1[0] = static_cast<float>(lights->Object[i]);
+    row1[1] = lights->ReflectionRatio.empty() ? 1.0f : lights->ReflectionRatio[i];
+    for (std::size_t t = 0; t < n2 && lights->Radiance.size() == 3 * n2 * count; ++t)
+    {
+      for (std::size_t c = 0; c < 3; ++c)
+      {
+        d.SLRadiance[4 * (i * n2 + t) + c] = lights->Radiance[(i * 3 + c) * n2 + t];
+      }
+    }
+  }
+  std::vector<std::vector<float>> partners(count);
+  std::size_t most = 0;
+  for (std::size_t i = 0; i < count && lights->Intersects.size() == count * count; ++i)
+  {
+    for (std::size_t j = 0; j < count; ++j)
+    {
+      if (lights->Intersects[i * count + j])
+      {
+        partners[i].push_back(static_cast<float>(j));
+      }
+    }
+    most = std::max(most, partners[i].size());
+  }
+  d.SLPartnerWidth = static_cast<int>(most + 1);
+  d.SLPartners.assign(count * (most + 1), 0.0f);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    d.SLPartners[i * (most + 1)] = static_cast<float>(partners[i].size());
+    std::copy(partners[i].begin(), partners[i].end(), &d.SLPartners[i * (most + 1) + 1]);
+  }
+}
+
 void GIResources::SetBlockers(const std::vector<float>& spheres, const std::vector<float>& planes)
 {
   Internals& d = *this->Impl;
@@ -359,8 +435,27 @@ void GIResources::Bind(vtkShaderProgram* program)
     d.LobeThetaResolution = lobes.GetThetaResolution();
     d.LobePhiResolution = lobes.GetPhiResolution();
     std::vector<float> texels(lobes.GetLobeTable().begin(), lobes.GetLobeTable().end());
-    d.Lobes = FloatTexture(
-      d.Window, d.Order + 1, d.LobeThetaResolution * d.LobePhiResolution, 1, texels);
+    d.Lobes =
+      FloatTexture(d.Window, d.Order + 1, d.LobeThetaResolution * d.LobePhiResolution, 1, texels);
+  }
+  if (d.SLDirty)
+  {
+    d.SLGeometryTexture = d.SLRadianceTexture = d.SLPartnersTexture = nullptr;
+    if (d.SLCount > 0)
+    {
+      const int n2s = d.Order * d.Order;
+      d.SLGeometryTexture = FloatTexture(d.Window, d.SLCount, 2, 4, d.SLGeometry);
+      d.SLRadianceTexture = FloatTexture(d.Window, n2s, d.SLCount, 4, d.SLRadiance);
+      d.SLPartnersTexture = FloatTexture(d.Window, d.SLPartnerWidth, d.SLCount, 1, d.SLPartners);
+      if (!d.WTable)
+      {
+        const sh::IndirectTables& indirect = sh::IndirectTables::Get(d.Order);
+        std::vector<float> w(indirect.GetSphericalLightWeightTable().begin(),
+          indirect.GetSphericalLightWeightTable().end());
+        d.WTable = FloatTexture(d.Window, d.Order, indirect.GetResolution(), 1, w);
+      }
+    }
+    d.SLDirty = false;
   }
   const int spheres = static_cast<int>(d.Spheres.size() / 4);
   if (d.BlockersDirty || !d.Proxies)
@@ -414,6 +509,23 @@ void GIResources::Bind(vtkShaderProgram* program)
   program->SetUniform3fv("pgiLightAbove", n2, d.LightAbove.data());
   program->SetUniformi("pgiLightMatrix", d.LightMatrix->GetTextureUnit());
   program->SetUniform1fv("pgiTransferZH", d.Order, d.TransferZH.data());
+  const bool lights = d.SLGeometryTexture && d.SLRadianceTexture && d.SLPartnersTexture && d.WTable;
+  if (lights)
+  {
+    for (vtkTextureObject* t : { d.SLGeometryTexture.Get(), d.SLRadianceTexture.Get(),
+           d.SLPartnersTexture.Get(), d.WTable.Get() })
+    {
+      t->Activate();
+    }
+    program->SetUniformi("pgiSLGeometry", d.SLGeometryTexture->GetTextureUnit());
+    program->SetUniformi("pgiSLRadiance", d.SLRadianceTexture->GetTextureUnit());
+    program->SetUniformi("pgiSLPartners", d.SLPartnersTexture->GetTextureUnit());
+    program->SetUniformi("pgiWTable", d.WTable->GetTextureUnit());
+    program->SetUniformi("pgiWResolution", d.DResolution);
+    program->SetUniformf("pgiWThetaScale", d.DThetaScale);
+    program->SetUniformi("pgiSLPerObject", d.SLPerObject ? 1 : 0);
+  }
+  program->SetUniformi("pgiNumSphericalLights", lights ? d.SLCount : 0);
   if (d.Lobes)
   {
     d.Lobes->Activate();
@@ -431,7 +543,8 @@ void GIResources::Unbind()
 {
   Internals& d = *this->Impl;
   for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get(),
-         d.CapVis.Get(), d.DTable.Get(), d.Lobes.Get() })
+         d.CapVis.Get(), d.DTable.Get(), d.Lobes.Get(), d.SLGeometryTexture.Get(),
+         d.SLRadianceTexture.Get(), d.SLPartnersTexture.Get(), d.WTable.Get() })
   {
     if (t)
     {
@@ -444,7 +557,8 @@ void GIResources::ReleaseGraphicsResources(vtkWindow* window)
 {
   Internals& d = *this->Impl;
   for (vtkTextureObject* t : { d.CapLog.Get(), d.OL.Get(), d.LightMatrix.Get(), d.Proxies.Get(),
-         d.CapVis.Get(), d.DTable.Get(), d.Lobes.Get() })
+         d.CapVis.Get(), d.DTable.Get(), d.Lobes.Get(), d.SLGeometryTexture.Get(),
+         d.SLRadianceTexture.Get(), d.SLPartnersTexture.Get(), d.WTable.Get() })
   {
     if (t)
     {
@@ -452,6 +566,8 @@ void GIResources::ReleaseGraphicsResources(vtkWindow* window)
     }
   }
   d.CapLog = d.OL = d.LightMatrix = d.Proxies = d.CapVis = d.DTable = d.Lobes = nullptr;
+  d.SLGeometryTexture = d.SLRadianceTexture = d.SLPartnersTexture = d.WTable = nullptr;
+  d.SLDirty = d.SLCount > 0;
   d.Order = 0;
   d.Window = nullptr;
 }

@@ -25,6 +25,8 @@
  * | pgiProxyIndirectTerm(H), pgiResolveIndirect(Scaled) | IndirectExitRadiance (averaged) |
  * | pgiPlaneShadowScale | proxygi::PlaneShadowScale |
  * | pgiAnalyticLight, pgiAnalyticLightLookup | sh::AnalyticLightTables::Evaluate, Lookup |
+ * | pgiSphericalLightRadiance (pgiGISphericalLights.glsl) | IndirectTables::SphericalLightRadiance
+ * | | pgiShadowedIndirect (pgiGISphericalLights.glsl) | ShadowedIndirect::ExitRadiance |
  */
 #ifndef pgiGIShaders_h
 #define pgiGIShaders_h
@@ -43,6 +45,7 @@ class vtkWindow;
 
 namespace proxygi
 {
+struct SphericalLights;
 namespace gpu
 {
 
@@ -63,6 +66,11 @@ PROXYGIRENDERING_EXPORT bool ReadProxies(
 /// The indirect-light GLSL (pgiISLibrary.glsl: pgiProxyIndirectTerm,
 /// pgiResolveIndirect and their uniforms), to go after LibrarySource.
 PROXYGIRENDERING_EXPORT std::string IndirectLibrarySource();
+
+/// The shadowed one-bounce GLSL (pgiGISphericalLights.glsl: the second pass
+/// of ShadowedIndirect) sized for `lights` spherical lights (rounded up to
+/// a multiple of 32, so few program variants), to go after LibrarySource.
+PROXYGIRENDERING_EXPORT std::string SphericalLightsLibrarySource(int lights);
 
 /// GLSL statements of TripleProduct::Square for one order (o = f * f).
 PROXYGIRENDERING_EXPORT std::string SquareSource(int order);
@@ -117,6 +125,12 @@ public:
   void SetAnalyticLightTable(bool use);
   /// The table's first theta node, below which the filter scales L_H.
   double GetAnalyticLightMinTheta() const;
+  /**
+   * The spherical lights of the shadowed bounce after their first pass
+   * (PrepareSphericalLights), uploaded on the next Bind with the w_theta
+   * table; null: none (pgiNumSphericalLights 0).
+   */
+  void SetSphericalLights(const SphericalLights* lights, bool perObject);
 
   /// Activates the textures and sets every uniform on a bound program.
   void Bind(vtkShaderProgram* program);

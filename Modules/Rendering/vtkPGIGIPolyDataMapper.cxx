@@ -11,8 +11,9 @@
 #include "pgiEnvironmentMap.h"
 #include "pgiEnvironmentShading.h"
 #include "pgiIndirectLight.h"
-#include "pgiSoftShadows.h"
 #include "pgiMaterial.h"
+#include "pgiSoftShadows.h"
+#include "pgiSphericalLights.h"
 #include "vtkPGILighting.h"
 
 #include "vtkActor.h"
@@ -80,6 +81,11 @@ struct vtkPGIGIPolyDataMapper::Internals
   vtkSmartPointer<vtkTextureObject> ProxyAlbedo;
   // Local lights: centre and radius (-1: point light), radiance; 4 floats each.
   std::vector<float> LocalLights, LocalRadiance;
+  // The light the proxies' samples see (L, or the light above the planes),
+  // per channel, for the shadowed bounce's first pass; what it did.
+  std::vector<double> SampleLight;
+  int SphericalLightCount = 0;
+  std::string SphericalLightSummary;
   vtkTimeStamp ShaderModeTime;
 };
 
@@ -124,6 +130,10 @@ void vtkPGIGIPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
      << (this->PlaneBlocking == PLANES_IN_LIGHT ? "PLANES_IN_LIGHT" : "PLANES_IN_LOG_SPACE")
      << "\n";
   os << indent << "Indirect: " << this->Indirect << "\n";
+  os << indent << "IndirectMode: "
+     << (this->IndirectMode == INDIRECT_MODE_SHADOWED ? "SHADOWED" : "UNSHADOWED") << "\n";
+  os << indent << "SphericalLightBlocking: "
+     << (this->SphericalLightBlocking == BLOCKING_PER_OBJECT ? "PER_OBJECT" : "PER_SPHERE") << "\n";
   os << indent << "PlaneBounceShadows: " << this->PlaneBounceShadows << "\n";
   os << indent << "LocalLights: " << this->LocalLights << "\n";
   os << indent << "DefaultProxyAlbedo: " << this->DefaultProxyAlbedo[0] << " "
@@ -212,6 +222,84 @@ vtkTransformFeedback* SharedCapture(int visibilityVec4s)
 }
 } // namespace
 
+bool vtkPGIGIPolyDataMapper::UpdateSphericalLights(vtkPGILighting* lighting)
+{
+  Internals& g = *this->GPU;
+  const int order = this->Order, n2 = order * order;
+  // What shadows the samples: the leaf proxies and the planes, as in the filter.
+  proxygi::Blockers blockers;
+  std::vector<vtkIdType> leafIds;
+  vtkDataArray* level = this->Proxies ? this->Proxies->GetPointData()->GetArray("Level") : nullptr;
+  const vtkIdType proxies = g.ProxyCount > 0 ? this->Proxies->GetNumberOfPoints() : 0;
+  for (vtkIdType i = 0, leaf = 0; i < proxies; ++i)
+  {
+    if (level && level->GetTuple1(i) != 0.0)
+    {
+      continue;
+    }
+    const float* s = &g.Spheres[4 * leaf];
+    blockers.AddSphere(s[0], s[1], s[2], s[3], &g.Albedos[4 * leaf]);
+    leafIds.push_back(i);
+    ++leaf;
+  }
+  for (std::size_t k = 0; 6 * k < this->BlockerPlanes.size(); ++k)
+  {
+    float v[9];
+    for (int q = 0; q < 6; ++q)
+    {
+      v[q] = static_cast<float>(this->BlockerPlanes[6 * k + q]);
+    }
+    for (int q = 0; q < 3; ++q)
+    {
+      v[6 + q] = static_cast<float>(this->PlaneAlbedos[3 * k + q]);
+    }
+    blockers.AddPlane(v, v + 3, v + 6);
+  }
+  proxygi::SoftShadowSettings settings;
+  settings.Order = order;
+  settings.MinAngle = static_cast<float>(this->MinBlockerAngle);
+  settings.SelfShadowRules = this->SelfShadowRules;
+  settings.Exp.HybridMaxNorm = this->HybridMaxNorm;
+  settings.Exp.RangeGuard = this->RangeTolerance >= 0.0;
+  settings.Exp.RangeTolerance = std::max(0.0, this->RangeTolerance);
+  settings.PlanesInLogSpace = !g.PlanesInLight;
+  const proxygi::ShadowedIndirect kernel(settings,
+    this->SphericalLightBlocking == BLOCKING_PER_OBJECT
+      ? proxygi::SphericalLightBlocking::PerObject
+      : proxygi::SphericalLightBlocking::PerSphere);
+  const double* light = g.SampleLight.data();
+  const proxygi::EnvironmentShading shading(
+    order, light, light + n2, light + 2 * n2, proxygi::EnvironmentShading::Path::ProductMatrix);
+  const bool dark = light[0] <= 0.0 && light[n2] <= 0.0 && light[2 * n2] <= 0.0;
+  proxygi::LocalEmitters emitters;
+  if (this->LocalLights)
+  {
+    for (const auto& l : lighting->GetSphereLights())
+    {
+      emitters.Add(l.Center, l.Radius, l.Radiance, false);
+    }
+    for (const auto& l : lighting->GetPointLights())
+    {
+      emitters.Add(l.Position, 0.0, l.Intensity, true);
+    }
+  }
+  proxygi::SphericalLights lights;
+  std::string summary, error;
+  const std::string why = proxygi::PrepareSphericalLights(this->Proxies, leafIds, nullptr, order,
+    this->ProxyAlbedoArrayName, this->DefaultProxyAlbedo, shading, dark, blockers,
+    emitters.Count() ? &emitters : nullptr, kernel, lights, summary, error);
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  g.SphericalLightCount = why.empty() ? static_cast<int>(lights.Count()) : 0;
+  g.SphericalLightSummary = why.empty() ? summary : "skipped: " + why;
+  g.Resources.SetSphericalLights(
+    why.empty() ? &lights : nullptr, this->SphericalLightBlocking == BLOCKING_PER_OBJECT);
+  return true;
+}
+
 bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
 {
   Internals& g = *this->GPU;
@@ -253,10 +341,11 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
         << this->Albedo[2] << " " << (this->AlbedoArrayName ? this->AlbedoArrayName : "") << " "
         << this->SelfShadowRules << " " << this->MinBlockerAngle << " " << this->HybridMaxNorm
         << " " << this->RangeTolerance << " " << this->CaptureVisibility << " "
-        << this->PlaneBlocking << " " << this->Indirect << " " << this->DefaultProxyAlbedo[0]
-        << " " << this->DefaultProxyAlbedo[1] << " " << this->DefaultProxyAlbedo[2] << " "
+        << this->PlaneBlocking << " " << this->Indirect << " " << this->DefaultProxyAlbedo[0] << " "
+        << this->DefaultProxyAlbedo[1] << " " << this->DefaultProxyAlbedo[2] << " "
         << (this->ProxyAlbedoArrayName ? this->ProxyAlbedoArrayName : "") << " "
-        << this->LocalLights << " " << this->PlaneBounceShadows;
+        << this->LocalLights << " " << this->PlaneBounceShadows << " " << this->IndirectMode << " "
+        << this->SphericalLightBlocking;
   for (double v : this->BlockerPlanes)
   {
     knobs << " " << v;
@@ -273,6 +362,7 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
   // the planes' visibility; the secondary lights' response (SecondaryLights:
   // from the light above the planes, or from L times the planes' exp-log
   // visibility when the planes are in log space).
+  bool lightChanged = false, proxiesChanged = false;
   if (g.LightOrder != order || g.LightingTime != lightingTime || settingsChanged)
   {
     const proxygi::EnvironmentMap* environment = nullptr;
@@ -311,6 +401,10 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
     {
       g.Resources.SetLightAbovePlanes(nullptr, nullptr, nullptr);
     }
+    g.SampleLight.assign(lr.begin(), lr.end());
+    g.SampleLight.insert(g.SampleLight.end(), lg.begin(), lg.end());
+    g.SampleLight.insert(g.SampleLight.end(), lb.begin(), lb.end());
+    lightChanged = true;
     g.PlaneVisibility.assign(planeVisibility.begin(), planeVisibility.end());
     const proxygi::SecondaryLights secondary(
       order, lr.data(), lg.data(), lb.data(), g.PlanesInLight ? nullptr : &planes);
@@ -401,6 +495,7 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
     g.ProxyAlbedo->SetMinificationFilter(vtkTextureObject::Nearest);
     g.ProxyAlbedo->SetMagnificationFilter(vtkTextureObject::Nearest);
     g.ProxyAlbedo->Create2DFromRaw(width, rows, 4, VTK_FLOAT, g.Albedos.data());
+    proxiesChanged = true;
     if (proxiesTime != g.ProxiesTime)
     {
       why << "proxies; ";
@@ -413,6 +508,27 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
   settings.HybridMaxNorm = this->HybridMaxNorm;
   settings.RangeTolerance = this->RangeTolerance;
   g.Resources.SetSettings(settings);
+
+  // Shadowed bounce: the proxies as spherical lights, their first pass on
+  // the CPU (PrepareSphericalLights, as the filter runs it) whenever the
+  // light, the proxies or a knob changed.
+  const bool shadowedMode = this->Indirect && this->IndirectMode == INDIRECT_MODE_SHADOWED;
+  if (!shadowedMode)
+  {
+    if (g.SphericalLightCount > 0 || lightChanged || proxiesChanged)
+    {
+      g.Resources.SetSphericalLights(nullptr, false);
+    }
+    g.SphericalLightCount = 0;
+    g.SphericalLightSummary.clear();
+  }
+  else if (lightChanged || proxiesChanged)
+  {
+    if (!this->UpdateSphericalLights(lighting))
+    {
+      return false;
+    }
+  }
 
   // Receivers: positions, normals (computed as the filter does if missing), albedo.
   const std::string albedoArray = this->AlbedoArrayName ? this->AlbedoArrayName : "";
@@ -520,9 +636,14 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
     }
     captureImpl << ");\n";
   }
-  vtkShaderProgram::Substitute(vs, "//PGI::Defines", "");
+  // The shadowed bounce's code only where it runs (it is the costliest to compile).
+  const bool sphericalLights = g.SphericalLightCount > 0;
+  vtkShaderProgram::Substitute(vs, "//PGI::Defines",
+    std::string("#define PGI_SPHERICAL_LIGHTS ") + (sphericalLights ? "1" : "0"));
   vtkShaderProgram::Substitute(vs, "//PGI::Library", proxygi::gpu::LibrarySource(order));
   vtkShaderProgram::Substitute(vs, "//PGI::ISLibrary", proxygi::gpu::IndirectLibrarySource());
+  vtkShaderProgram::Substitute(vs, "//PGI::SLLibrary",
+    sphericalLights ? proxygi::gpu::SphericalLightsLibrarySource(g.SphericalLightCount) : "");
   vtkShaderProgram::Substitute(vs, "//PGI::Capture::Dec", captureDec.str());
   vtkShaderProgram::Substitute(vs, "//PGI::Capture::Impl", captureImpl.str());
   vtkShaderProgram* program =
@@ -574,6 +695,7 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
   program->SetUniformi("pgiPlanesInLight", g.PlanesInLight ? 1 : 0);
   program->SetUniform1fv("pgiPlaneVisibility", n2, g.PlaneVisibility.data());
   program->SetUniformi("pgiIndirect", this->Indirect ? 1 : 0);
+  program->SetUniformi("pgiIndirectShadowed", shadowedMode ? 1 : 0);
   program->SetUniformi("pgiPlaneBounceShadows", this->PlaneBounceShadows ? 1 : 0);
   program->SetUniform3fv("pgiResponse", n2, g.Response.data());
   {
@@ -639,10 +761,12 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
   status << "GI on the GPU: " << n << " vertices, " << g.ProxyCount << " proxies, "
          << this->BlockerPlanes.size() / 6 << " planes, order " << order << ", "
          << (this->Shadows ? "SHEXP shadows (HYB)" : "no shadows")
-         << (planeCount == 0 ? ""
+         << (planeCount == 0      ? ""
                 : g.PlanesInLight ? ", planes carried by the light"
                                   : ", planes in log space")
-         << (this->Indirect ? ", one-bounce indirect (averaged, xi)" : "")
+         << (!this->Indirect   ? ""
+                : shadowedMode ? ", one-bounce indirect (shadowed: " + g.SphericalLightSummary + ")"
+                               : std::string(", one-bounce indirect (averaged, xi)"))
          << (this->Indirect && this->PlaneBounceShadows && planeCount > 0
                 ? ", planes' bounce shadowed"
                 : "");

@@ -45,8 +45,13 @@
  * | PlaneBlocking | PLANES_IN_LIGHT | as vtkPGIGlobalIllumination: receivers above every
  * plane get L times the planes' steps (LightAbovePlanes, built on the CPU) and no planes in
  * log space; PLANES_IN_LOG_SPACE accumulates the planes' 90-degree caps in log space |
- * | Indirect | off | one-bounce unshadowed indirect light from the proxies and planes
- * (the filter's INDIRECT_MODE_UNSHADOWED, AVERAGED operator, overlap normalisation xi) |
+ * | Indirect | off | one-bounce indirect light from the proxies and planes |
+ * | IndirectMode | INDIRECT_MODE_UNSHADOWED | the filter's two models: UNSHADOWED (Sloan
+ * 2007: AVERAGED operator, overlap normalisation xi) or SHADOWED (Guerrero 2008: the proxies
+ * as spherical lights, first pass on the CPU per proxy, second pass per vertex on the GPU,
+ * about one HYB exp per light a vertex sees; planes still reflect as in UNSHADOWED) |
+ * | SphericalLightBlocking | BLOCKING_PER_SPHERE | SHADOWED: who blocks whom, per sphere or
+ * per object (the filter's knob) |
  * | PlaneBounceShadows | on | with Indirect: planes reflect less where the proxies shadow
  * them (the filter's PlaneShadowScale; one more visibility per receiver and plane) |
  * | DefaultProxyAlbedo | 0.8 0.8 0.8 | proxies' albedo where they have no
@@ -58,8 +63,8 @@
  * filter's Radiance.
  *
  * Not on the GPU yet (the CPU filter has them): exp methods other than HYB,
- * AccumulationOrder, windowing, hierarchy cuts, the indirect operators other
- * than AVERAGED, the shadowed indirect mode.
+ * AccumulationOrder, windowing, hierarchy cuts (and with them the spherical
+ * lights' reflection ratios), the indirect operators other than AVERAGED.
  * The surface pass needs no geometry shader (no wide lines or edges).
  *
  * Errors: proxies without "Radius" or with NaN/Inf/negative values, a bad
@@ -111,6 +116,24 @@ public:
   vtkSetMacro(Indirect, bool);
   vtkGetMacro(Indirect, bool);
   vtkBooleanMacro(Indirect, bool);
+  /// The indirect model (vtkPGIGlobalIllumination's values).
+  enum
+  {
+    INDIRECT_MODE_UNSHADOWED = 0,
+    INDIRECT_MODE_SHADOWED = 1
+  };
+  vtkSetClampMacro(IndirectMode, int, INDIRECT_MODE_UNSHADOWED, INDIRECT_MODE_SHADOWED);
+  vtkGetMacro(IndirectMode, int);
+  void SetIndirectModeToUnshadowed() { this->SetIndirectMode(INDIRECT_MODE_UNSHADOWED); }
+  void SetIndirectModeToShadowed() { this->SetIndirectMode(INDIRECT_MODE_SHADOWED); }
+  /// SHADOWED: per-sphere or per-object blocking of the spherical lights.
+  enum
+  {
+    BLOCKING_PER_SPHERE = 0,
+    BLOCKING_PER_OBJECT = 1
+  };
+  vtkSetClampMacro(SphericalLightBlocking, int, BLOCKING_PER_SPHERE, BLOCKING_PER_OBJECT);
+  vtkGetMacro(SphericalLightBlocking, int);
   /// With Indirect: the planes reflect less where the proxies shadow them
   /// (one more visibility per receiver and plane; the filter's knob).
   vtkSetMacro(PlaneBounceShadows, bool);
@@ -191,6 +214,8 @@ protected:
 
   /// Runs the GI pass if anything it depends on changed; false if GI is off.
   bool UpdateGI(vtkRenderer* ren, vtkActor* act);
+  // The shadowed bounce's spherical lights and their first pass (CPU).
+  bool UpdateSphericalLights(vtkPGILighting* lighting);
 
   vtkPolyData* Proxies = nullptr;
   vtkPGILighting* Lighting = nullptr;
@@ -198,6 +223,8 @@ protected:
   std::vector<double> PlaneAlbedos;  // 3 per plane
   int PlaneBlocking = PLANES_IN_LIGHT;
   bool Indirect = false;
+  int IndirectMode = INDIRECT_MODE_UNSHADOWED;
+  int SphericalLightBlocking = BLOCKING_PER_SPHERE;
   bool PlaneBounceShadows = true;
   double DefaultProxyAlbedo[3] = { 0.8, 0.8, 0.8 };
   char* ProxyAlbedoArrayName = nullptr;

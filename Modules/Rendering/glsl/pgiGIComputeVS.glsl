@@ -12,6 +12,10 @@
 
 //PGI::ISLibrary
 
+#if PGI_SPHERICAL_LIGHTS
+//PGI::SLLibrary
+#endif
+
 in vec3 pgiPositionMC;
 in vec3 pgiNormalMC;
 in vec3 pgiAlbedoMC;
@@ -33,6 +37,9 @@ uniform float pgiPlaneVisibility[PGI_SH_N2];
 // One-bounce unshadowed indirect light from the proxies (albedo texture, the
 // proxy texture's layout) and the planes (pgiPlaneAlbedo, pgiResponse).
 uniform int pgiIndirect;
+// 1: the shadowed model (proxies as spherical lights, pgiShadowedIndirect);
+// the proxy terms then only count for xi and the planes still reflect.
+uniform int pgiIndirectShadowed;
 uniform sampler2D pgiProxyAlbedo;
 // 1: planes reflect less where the proxies shadow them (PlaneBounceShadows).
 uniform int pgiPlaneBounceShadows;
@@ -126,8 +133,8 @@ void main()
     for (int s = 0; s < pgiNumProxies; ++s)
     {
       ivec2 texel = ivec2(s % pgiProxyTextureWidth, s / pgiProxyTextureWidth);
-      sum += pgiProxyIndirectTermH(p, n, h, texelFetch(pgiProxyTexture, texel, 0),
-        texelFetch(pgiProxyAlbedo, texel, 0).rgb);
+      vec3 albedo = pgiIndirectShadowed != 0 ? vec3(0.0) : texelFetch(pgiProxyAlbedo, texel, 0).rgb;
+      sum += pgiProxyIndirectTermH(p, n, h, texelFetch(pgiProxyTexture, texel, 0), albedo);
     }
     float dc = g[0];
     if (carried)
@@ -142,6 +149,12 @@ void main()
     rgb += pgiResolveIndirectScaled(
       p, n, sum, dc, pgiPlaneBounceShadows != 0, pgiPlanesInLight == 0);
   }
+#if PGI_SPHERICAL_LIGHTS
+  if (pgiIndirect != 0 && pgiIndirectShadowed != 0)
+  {
+    rgb += pgiShadowedIndirect(p, n, pgiPlanesInLight == 0);
+  }
+#endif
   if (pgiNumLocalLights > 0)
   {
     rgb += pgiLocalLights(p, n, g);

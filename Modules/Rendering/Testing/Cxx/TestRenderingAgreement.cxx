@@ -94,6 +94,8 @@ struct Case
   int PlaneBlocking = vtkPGIGlobalIllumination::PLANES_IN_LIGHT; // both defaults
   bool Indirect = false;
   bool PlaneBounceShadows = true; // both defaults
+  bool Shadowed = false;          // INDIRECT_MODE_SHADOWED (spherical lights)
+  bool PerObject = false;         // BLOCKING_PER_OBJECT
   std::array<double, 3> PlaneAlbedo = { 0, 0, 0 };
   vtkSmartPointer<vtkPGILighting> Lighting; // with local lights; else the sky
 };
@@ -116,6 +118,10 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
     mapper->SetPlaneBlocking(c.PlaneBlocking);
   }
   mapper->SetIndirect(c.Indirect);
+  mapper->SetIndirectMode(c.Shadowed ? vtkPGIGIPolyDataMapper::INDIRECT_MODE_SHADOWED
+                                     : vtkPGIGIPolyDataMapper::INDIRECT_MODE_UNSHADOWED);
+  mapper->SetSphericalLightBlocking(c.PerObject ? vtkPGIGIPolyDataMapper::BLOCKING_PER_OBJECT
+                                                : vtkPGIGIPolyDataMapper::BLOCKING_PER_SPHERE);
   mapper->SetPlaneBounceShadows(c.PlaneBounceShadows);
   for (const auto& p : c.Planes)
   {
@@ -158,6 +164,10 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
     gi->SetOrder(order);
     gi->SetShadows(c.Shadows);
     gi->SetIndirect(c.Indirect);
+    gi->SetIndirectMode(c.Shadowed ? vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED
+                                   : vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED);
+    gi->SetSphericalLightBlocking(c.PerObject ? vtkPGIGlobalIllumination::BLOCKING_PER_OBJECT
+                                              : vtkPGIGlobalIllumination::BLOCKING_PER_SPHERE);
     gi->SetPlaneBounceShadows(c.PlaneBounceShadows);
     gi->SetLocalLights(local);
     gi->SetShadingPath(path);
@@ -176,7 +186,8 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
   vtkSmartPointer<vtkPolyData> table = run(vtkPGIGlobalIllumination::SHADING_TABLE);
   vtkDataArray* cpu = matrix->GetPointData()->GetArray("Radiance");
   vtkDataArray* cpuTable = table->GetPointData()->GetArray("Radiance");
-  vtkDataArray* cpuIndirect = matrix->GetPointData()->GetArray("IndirectProxy");
+  vtkDataArray* cpuIndirect =
+    matrix->GetPointData()->GetArray(c.Shadowed ? "IndirectShadowed" : "IndirectProxy");
   double indirectPeak = 0.0;
   for (vtkIdType i = 0; i < cpuIndirect->GetNumberOfTuples(); ++i)
   {
@@ -447,5 +458,44 @@ int TestRenderingAgreement(int, char*[])
   litFlat.Name = "local lights, shadows off";
   litFlat.Shadows = false;
   Compare(window, lighting, litFlat, 4, 1e-4, 1e-4, strict);
+
+  // Shadowed one bounce (the proxies as spherical lights, first pass on the
+  // CPU, second on the GPU): one object whose spheres intersect (so they do
+  // not block each other), planes in the light and in log space, with local
+  // lights in the first pass, and per-object blocking over three objects.
+  Case shadowed = bounce;
+  shadowed.Name = "shadowed bounce";
+  shadowed.Shadowed = true;
+  for (int order : { 3, 4 })
+  {
+    Compare(window, lighting, shadowed, order, 1e-4, 1e-4, strict);
+  }
+  Case shadowedLog = shadowed;
+  shadowedLog.Name = "shadowed, log space";
+  shadowedLog.PlaneBlocking = vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE;
+  Compare(window, lighting, shadowedLog, 4, 1e-4, 1e-4, strict);
+  Case shadowedLit = lit;
+  shadowedLit.Name = "shadowed, local lights";
+  shadowedLit.Shadowed = true;
+  Compare(window, lighting, shadowedLit, 4, 1e-4, 1e-4, strict);
+  Case objects = shadowed;
+  {
+    auto proxies = vtkSmartPointer<vtkPolyData>::New();
+    proxies->DeepCopy(shadowed.Proxies);
+    vtkNew<vtkFloatArray> ids;
+    ids->SetName("ObjectId");
+    const float id[5] = { 0, 0, 1, 1, 2 };
+    for (float v : id)
+    {
+      ids->InsertNextValue(v);
+    }
+    proxies->GetPointData()->AddArray(ids);
+    objects.Proxies = proxies;
+  }
+  objects.Name = "shadowed, per sphere, 3 obj.";
+  Compare(window, lighting, objects, 4, 1e-4, 1e-4, strict);
+  objects.Name = "shadowed, per object";
+  objects.PerObject = true;
+  Compare(window, lighting, objects, 4, 1e-4, 1e-4, strict);
   return pgitest::Result();
 }

@@ -17,6 +17,7 @@
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
 #include "pgiSoftShadows.h"
+#include "pgiSphericalLights.h"
 
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkRenderWindow.h"
@@ -631,16 +632,16 @@ int TestRenderingGLSLTwins(int, char*[])
         Pack("g", n2, 4);
       const auto uniforms = [&](vtkShaderProgram* program)
       {
-        program->SetUniform3fv("pgiTwinAlbedo", static_cast<int>(blockers.Spheres()),
-          albedos.data());
+        program->SetUniform3fv(
+          "pgiTwinAlbedo", static_cast<int>(blockers.Spheres()), albedos.data());
         program->SetUniform3fv("pgiResponse", n2, response.data());
         program->SetUniform3fv("pgiPlaneAlbedo", proxygi::gpu::MaxPlanes, planeAlbedos.data());
         program->SetUniformf("pgiPlaneTolerance", 0.0f);
       };
       // Orders 3 and 4 (at 6 the shader is the costliest of the test to
       // compile on llvmpipe, and its parts are checked at 6 above).
-      const bool lightRan = order <= 4 &&
-        harness.Run(order, declarations, lightBody, 2, 4 + gOuts, in, out, uniforms);
+      const bool lightRan =
+        order <= 4 && harness.Run(order, declarations, lightBody, 2, 4 + gOuts, in, out, uniforms);
       if (lightRan)
       {
         proxygi::SoftShadowSettings settings;
@@ -739,7 +740,7 @@ int TestRenderingGLSLTwins(int, char*[])
       }
       if (run("  float lh[PGI_SH_N2];\n"
               "  pgiAnalyticLight(pgiIn0.xyz, pgiIn1.xyz, pgiIn0.w, lh);\n" +
-            Pack("lh", n2, 0),
+              Pack("lh", n2, 0),
             2, Vec4s(n2)))
       {
         Stats lh;
@@ -756,6 +757,115 @@ int TestRenderingGLSLTwins(int, char*[])
         Report("pgiAnalyticLight vs Evaluate", order, lh, 2e-4);
       }
       harness.Resources().SetAnalyticLightTable(false);
+    }
+
+    // The shadowed bounce's second pass (pgiGISphericalLights.glsl) against
+    // ShadowedIndirect::ExitRadiance: 9 random spherical lights of 3 objects
+    // (overlapping spheres of one object do not block each other), random
+    // radiance SH and reflection ratios, a ground plane in log space or not,
+    // per-sphere and per-object blocking; receivers above the plane, some
+    // inside lights. Also w_theta . Lc against SphericalLightRadiance.
+    if (order <= 4)
+    {
+      proxygi::SphericalLights lights;
+      lights.Order = order;
+      std::vector<float> spheres;
+      float centre[3] = { 0, 0, 0 };
+      for (int i = 0; i < 9; ++i)
+      {
+        if (i % 3 == 0) // an object: three spheres about a centre
+        {
+          centre[0] = static_cast<float>(random.Uniform(-1.0, 1.0));
+          centre[1] = static_cast<float>(random.Uniform(-1.0, 1.0));
+          centre[2] = static_cast<float>(random.Uniform(0.8, 1.3));
+        }
+        const float x = centre[0] + static_cast<float>(random.Uniform(-0.4, 0.4)),
+                    y = centre[1] + static_cast<float>(random.Uniform(-0.4, 0.4)),
+                    z = centre[2] + static_cast<float>(random.Uniform(-0.3, 0.3)),
+                    r = static_cast<float>(random.Uniform(0.25, 0.6));
+        lights.Add(x, y, z, r, i / 3);
+        spheres.insert(spheres.end(), { x, y, z, r });
+        lights.ReflectionRatio.push_back(static_cast<float>(random.Uniform(0.5, 1.5)));
+        for (int c = 0; c < 3; ++c)
+        {
+          for (int k = 0; k < n2; ++k)
+          {
+            lights.Radiance.push_back(
+              static_cast<float>(k == 0 ? random.Uniform(1.0, 3.0) : random.Uniform(-0.3, 0.3)));
+          }
+        }
+      }
+      lights.Finish();
+      int intersecting = 0;
+      for (char v : lights.Intersects)
+      {
+        intersecting += v;
+      }
+      const float planeO[3] = { 0, 0, 0 }, planeN[3] = { 0, 0, 1 };
+      proxygi::Blockers ground;
+      ground.AddPlane(planeO, planeN);
+      harness.Resources().SetBlockers(spheres, { 0, 0, 0, 0, 0, 1 });
+      in.assign(12 * samples, 0.0f);
+      for (int s = 0; s < samples; ++s)
+      {
+        float* row = &in[12 * s];
+        row[0] = static_cast<float>(random.Uniform(-1.8, 1.8));
+        row[1] = static_cast<float>(random.Uniform(-1.8, 1.8));
+        row[2] = static_cast<float>(random.Uniform(0.02, 1.8));
+        row[3] = s % 2 == 0 ? 1.0f : 0.0f; // planes in log space
+        random.Direction(row + 4);
+        row[7] = static_cast<float>(s % 9); // a light for pgiSphericalLightRadiance
+        random.Direction(row + 8);
+        row[11] = static_cast<float>(random.Uniform(0.0, 0.5 * sh::Pi));
+      }
+      const std::string body =
+        "  pgiOut0 = vec4(pgiShadowedIndirect(pgiIn0.xyz, pgiIn1.xyz, pgiIn0.w > 0.5), 0.0);\n"
+        "  pgiOut1 = vec4(pgiSphericalLightRadiance(pgiIn2.w, pgiIn2.xyz, int(pgiIn1.w)), 0.0);\n";
+      const sh::IndirectTables& indirectTables = sh::IndirectTables::Get(order);
+      for (bool perObject : { false, true })
+      {
+        harness.Resources().SetSphericalLights(&lights, perObject);
+        if (!harness.Run(order, proxygi::gpu::SphericalLightsLibrarySource(9), body, 3, 2, in, out))
+        {
+          std::printf("FAILED harness: %s\n", harness.GetError().c_str());
+          ++pgitest::Failures();
+          continue;
+        }
+        proxygi::SoftShadowSettings settings;
+        settings.Order = order;
+        const auto blocking = perObject ? proxygi::SphericalLightBlocking::PerObject
+                                        : proxygi::SphericalLightBlocking::PerSphere;
+        const proxygi::ShadowedIndirect inLog(settings, blocking);
+        settings.PlanesInLogSpace = false;
+        const proxygi::ShadowedIndirect inLight(settings, blocking);
+        proxygi::SphericalLightScratch scratch;
+        Stats exit, weight;
+        int lit = 0;
+        for (int s = 0; s < samples; ++s)
+        {
+          const float* row = &in[12 * s];
+          float rgb[3];
+          (row[3] > 0.5f ? inLog : inLight)
+            .ExitRadiance(lights, true, nullptr, &ground, row, row + 4, rgb, scratch);
+          lit += rgb[0] + rgb[1] + rgb[2] > 0.0f ? 1 : 0;
+          const int light = static_cast<int>(row[7]);
+          for (int c = 0; c < 3; ++c)
+          {
+            exit.Add(out[8 * s + c], rgb[c]);
+            weight.Add(out[8 * s + 4 + c],
+              indirectTables.SphericalLightRadiance(
+                row[11], row + 8, &lights.Radiance[(light * 3 + c) * n2]));
+          }
+        }
+        std::printf("  pgiShadowedIndirect (%s): %d of %d receivers lit, %d intersecting pairs\n",
+          perObject ? "per object" : "per sphere", lit, samples, intersecting / 2);
+        PGI_CHECK(lit > samples / 2);
+        PGI_CHECK(intersecting > 0);
+        Report(perObject ? "pgiShadowedIndirect, per object" : "pgiShadowedIndirect, per sphere",
+          order, exit, 2e-4);
+        Report("pgiSphericalLightRadiance vs C++", order, weight, 2e-6);
+      }
+      harness.Resources().SetSphericalLights(nullptr, false);
     }
   }
   return pgitest::Result();
