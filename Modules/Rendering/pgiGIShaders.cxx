@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <sstream>
 
 namespace proxygi
@@ -361,6 +362,7 @@ void GIResources::SetSphericalLights(const SphericalLights* lights, bool perObje
   const std::size_t count = static_cast<std::size_t>(d.SLCount);
   const std::size_t n2 = static_cast<std::size_t>(lights->Order) * lights->Order;
   d.SLGeometry.assign(8 * count, 0.0f);
+  std::map<int, int> numbers; // object id -> its number
   d.SLRadiance.assign(4 * n2 * count, 0.0f);
   for (std::size_t i = 0; i < count; ++i)
   {
@@ -372,6 +374,8 @@ void GIResources::SetSphericalLights(const SphericalLights* lights, bool perObje
     row0[3] = lights->R[i];
     row1[0] = static_cast<float>(lights->Object[i]);
     row1[1] = lights->ReflectionRatio.empty() ? 1.0f : lights->ReflectionRatio[i];
+    const auto known = numbers.emplace(lights->Object[i], static_cast<int>(numbers.size())).first;
+    row1[2] = static_cast<float>(known->second);
     for (std::size_t t = 0; t < n2 && lights->Radiance.size() == 3 * n2 * count; ++t)
     {
       for (std::size_t c = 0; c < 3; ++c)

@@ -41,6 +41,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <sstream>
 
@@ -86,6 +87,7 @@ struct vtkPGIGIPolyDataMapper::Internals
   std::vector<double> SampleLight;
   int SphericalLightCount = 0;
   std::string SphericalLightSummary;
+  bool WarnedBudget = false;
   vtkTimeStamp ShaderModeTime;
 };
 
@@ -773,6 +775,26 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
   if (!g.LocalLights.empty())
   {
     status << ", " << g.LocalLights.size() / 4 << " local lights";
+  }
+  // Mesa's llvmpipe ends every loop of a shader invocation once all its
+  // loops together ran 65535 iterations (gallivm's loop limiter): past the
+  // sizes measured to stay inside it (Documentation/Rendering.md), say so.
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const bool llvmpipe = renderer && std::strstr(renderer, "llvmpipe");
+  const bool overBudget =
+    g.ProxyCount > 1000 || (this->Indirect && g.ProxyCount > 600) || g.SphericalLightCount > 96;
+  if (llvmpipe && overBudget)
+  {
+    status << "; on llvmpipe beyond its loop budget (more than 1000 proxies, 600 with the "
+              "bounce or 96 spherical lights): results may be cut short";
+    if (!g.WarnedBudget)
+    {
+      vtkWarningMacro(<< "llvmpipe stops a shader's loops after 65535 iterations in all: with "
+                      << g.ProxyCount << " proxies and " << g.SphericalLightCount
+                      << " spherical lights the GI pass may be cut short. Use a hardware GPU, "
+                         "fewer proxies or vtkPGIGlobalIllumination.");
+      g.WarnedBudget = true;
+    }
   }
   status << "; recomputed ("
          << (reasons.empty() ? "AlwaysRecompute" : reasons.substr(0, reasons.size() - 2)) << ")";

@@ -67,8 +67,14 @@
  * lights' reflection ratios), the indirect operators other than AVERAGED.
  * The surface pass needs no geometry shader (no wide lines or edges).
  *
- * Errors: proxies without "Radius" or with NaN/Inf/negative values, a bad
- * environment (vtkErrorMacro; the mesh is then drawn with VTK's lighting).
+ * Errors: proxies without "Radius" or with NaN/Inf/negative values
+ * (vtkErrorMacro; GI goes on without the proxies), a bad environment
+ * (vtkErrorMacro; the mesh is then drawn with VTK's lighting).
+ *
+ * On Mesa's llvmpipe a shader invocation stops all its loops once they ran
+ * 65535 iterations together; past about 1000 proxies, 600 with the bounce
+ * or 96 spherical lights the results may be cut short, which GetGIStatus()
+ * and a warning say. Hardware drivers have no such limit.
  */
 #ifndef vtkPGIGIPolyDataMapper_h
 #define vtkPGIGIPolyDataMapper_h

@@ -8,7 +8,8 @@
 
 #define PGI_SL_WORDS ((PGI_MAX_SPHERICAL_LIGHTS + 31) / 32)
 
-// texel (i, 0): centre, radius of light i; (i, 1): object id, reflection ratio.
+// texel (i, 0): centre, radius of light i; (i, 1): object id, reflection
+// ratio, the object's number among the lights' objects (0, 1, ...).
 uniform sampler2D pgiSLGeometry;
 // texel (t, i): coefficient t of light i's Lc (RGB).
 uniform sampler2D pgiSLRadiance;
@@ -179,24 +180,27 @@ vec3 pgiShadowedIndirect(vec3 p, vec3 n, bool planesInLogSpace)
     key[count] = dist;
     theta[count] = pgiAsin(r / dist);
     dir[count] = d / dist;
-    object[count] = texelFetch(pgiSLGeometry, ivec2(i, 1), 0).r;
+    object[count] = texelFetch(pgiSLGeometry, ivec2(i, 1), 0).b;
     ++count;
   }
   if (count == 0)
   {
     return vec3(0.0);
   }
-  // Sort keys: distance, or (per object) the object's nearest light first.
+  // Sort keys: distance, or (per object) the object's nearest light first
+  // (objects are numbered 0.. in pgiSLGeometry's row 1, b).
+  float nearest[PGI_MAX_SPHERICAL_LIGHTS];
   for (int a = 0; a < count; ++a)
   {
-    objectKey[a] = key[a];
-    for (int b = 0; pgiSLPerObject != 0 && b < count; ++b)
-    {
-      if (object[b] == object[a])
-      {
-        objectKey[a] = min(objectKey[a], key[b]);
-      }
-    }
+    nearest[int(object[a])] = 3.0e38;
+  }
+  for (int a = 0; a < count; ++a)
+  {
+    nearest[int(object[a])] = min(nearest[int(object[a])], key[a]);
+  }
+  for (int a = 0; a < count; ++a)
+  {
+    objectKey[a] = pgiSLPerObject != 0 ? nearest[int(object[a])] : key[a];
   }
   int rank[PGI_MAX_SPHERICAL_LIGHTS], position[PGI_MAX_SPHERICAL_LIGHTS];
   for (int i = 0; i < pgiNumSphericalLights; ++i)

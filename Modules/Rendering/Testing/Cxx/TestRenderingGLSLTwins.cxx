@@ -760,18 +760,22 @@ int TestRenderingGLSLTwins(int, char*[])
     }
 
     // The shadowed bounce's second pass (pgiGISphericalLights.glsl) against
-    // ShadowedIndirect::ExitRadiance: 9 random spherical lights of 3 objects
-    // (overlapping spheres of one object do not block each other), random
+    // ShadowedIndirect::ExitRadiance: 9 and 96 random spherical lights, three
+    // overlapping spheres per object (they do not block each other), random
     // radiance SH and reflection ratios, a ground plane in log space or not,
     // per-sphere and per-object blocking; receivers above the plane, some
-    // inside lights. Also w_theta . Lc against SphericalLightRadiance.
-    if (order <= 4)
+    // inside lights. 96 lights: more than the 64 the C++ twin caches exps
+    // for, three words of blocker-set bits. (Not more on llvmpipe: it ends
+    // every loop of an invocation after 65535 iterations in all, which ~130
+    // lights seen at once exceed; see Documentation/Rendering.md.) Also
+    // w_theta . Lc against SphericalLightRadiance.
+    for (int lightCount = 9; order <= 4 && lightCount <= 96; lightCount += 87)
     {
       proxygi::SphericalLights lights;
       lights.Order = order;
       std::vector<float> spheres;
       float centre[3] = { 0, 0, 0 };
-      for (int i = 0; i < 9; ++i)
+      for (int i = 0; i < lightCount; ++i)
       {
         if (i % 3 == 0) // an object: three spheres about a centre
         {
@@ -814,7 +818,7 @@ int TestRenderingGLSLTwins(int, char*[])
         row[2] = static_cast<float>(random.Uniform(0.02, 1.8));
         row[3] = s % 2 == 0 ? 1.0f : 0.0f; // planes in log space
         random.Direction(row + 4);
-        row[7] = static_cast<float>(s % 9); // a light for pgiSphericalLightRadiance
+        row[7] = static_cast<float>(s % lightCount); // a light for pgiSphericalLightRadiance
         random.Direction(row + 8);
         row[11] = static_cast<float>(random.Uniform(0.0, 0.5 * sh::Pi));
       }
@@ -825,7 +829,8 @@ int TestRenderingGLSLTwins(int, char*[])
       for (bool perObject : { false, true })
       {
         harness.Resources().SetSphericalLights(&lights, perObject);
-        if (!harness.Run(order, proxygi::gpu::SphericalLightsLibrarySource(9), body, 3, 2, in, out))
+        if (!harness.Run(
+              order, proxygi::gpu::SphericalLightsLibrarySource(lightCount), body, 3, 2, in, out))
         {
           std::printf("FAILED harness: %s\n", harness.GetError().c_str());
           ++pgitest::Failures();
@@ -857,8 +862,10 @@ int TestRenderingGLSLTwins(int, char*[])
                 row[11], row + 8, &lights.Radiance[(light * 3 + c) * n2]));
           }
         }
-        std::printf("  pgiShadowedIndirect (%s): %d of %d receivers lit, %d intersecting pairs\n",
-          perObject ? "per object" : "per sphere", lit, samples, intersecting / 2);
+        std::printf(
+          "  pgiShadowedIndirect (%d lights, %s): %d of %d receivers lit, %d intersecting "
+          "pairs\n",
+          lightCount, perObject ? "per object" : "per sphere", lit, samples, intersecting / 2);
         PGI_CHECK(lit > samples / 2);
         PGI_CHECK(intersecting > 0);
         Report(perObject ? "pgiShadowedIndirect, per object" : "pgiShadowedIndirect, per sphere",
