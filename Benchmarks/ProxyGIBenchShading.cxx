@@ -1,8 +1,21 @@
 // Per-receiver soft-shadow cost: receivers x blockers per second at SH order
 // 3-6 (log accumulation with the self-shadow rules, then HYB), next to the
 // machine's measured single-core float multiply-add peak, so the kernel's
-// efficiency can be read off one run.
+// efficiency can be read off one run. Plan/...: the whole filter with an
+// effect the scene does not call for (skipped) against the effect off, and
+// against the effect running, to show a skipped effect costs nothing.
 #include "pgiSoftShadows.h"
+#include "vtkPGIGlobalIllumination.h"
+#include "vtkPGILighting.h"
+
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 
 #include <benchmark/benchmark.h>
 
@@ -73,10 +86,95 @@ void BenchVisibility(benchmark::State& state, int order, int count)
     benchmark::Counter(double(count) * state.iterations(), benchmark::Counter::kIsRate);
   state.SetItemsProcessed(state.iterations());
 }
+// A grid of (n + 1)^2 receivers on z = 0 facing up, quads as polygons.
+vtkSmartPointer<vtkPolyData> Grid(int n)
+{
+  auto grid = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> normals;
+  normals->SetNumberOfComponents(3);
+  vtkNew<vtkCellArray> quads;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      points->InsertNextPoint(-3.0 + 6.0 * i / n, -3.0 + 6.0 * j / n, 0.0);
+      normals->InsertNextTuple3(0, 0, 1);
+      if (i < n && j < n)
+      {
+        const vtkIdType a = j * (n + 1) + i, quad[4] = { a, a + 1, a + n + 2, a + n + 1 };
+        quads->InsertNextCell(4, quad);
+      }
+    }
+  }
+  grid->SetPoints(points);
+  grid->SetPolys(quads);
+  grid->GetPointData()->SetNormals(normals);
+  return grid;
+}
+
+// Proxies: `count` spheres over the grid (or one far, tiny one), albedo a.
+vtkSmartPointer<vtkPolyData> Proxies(int count, double albedo, bool farTiny)
+{
+  auto proxies = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkDoubleArray> radius, colour;
+  radius->SetName("Radius");
+  colour->SetName("Albedo");
+  colour->SetNumberOfComponents(3);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < count; ++k)
+  {
+    points->InsertNextPoint(
+      farTiny ? 0.0 : 2 * u(rng), farTiny ? 0.0 : 2 * u(rng), farTiny ? 1e4 : 1.0 + 0.5 * u(rng));
+    radius->InsertNextValue(farTiny ? 1.0 : 0.4 + 0.2 * u(rng));
+    colour->InsertNextTuple3(albedo, albedo, albedo);
+  }
+  proxies->SetPoints(points);
+  proxies->GetPointData()->AddArray(radius);
+  proxies->GetPointData()->AddArray(colour);
+  return proxies;
+}
+
+// The filter over 65^2 receivers, 8 proxies, a ground, one effect varied.
+void BenchPlan(benchmark::State& state, int variant)
+{
+  vtkSmartPointer<vtkPolyData> grid = Grid(64);
+  vtkNew<vtkPGILighting> lighting;
+  vtkNew<vtkPGIGlobalIllumination> gi;
+  gi->SetInputData(grid);
+  const bool dark = variant == 1 || variant == 3;
+  gi->SetProxiesData(Proxies(variant == 6 ? 1 : 8, dark ? 0.0 : 0.8, variant == 6));
+  gi->SetLighting(lighting);
+  gi->SetIndirect(variant >= 1 && variant <= 4);
+  gi->SetIndirectMode(variant == 3 || variant == 4
+      ? vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED
+      : vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED);
+  gi->SetLocalLights(variant == 5);
+  if (variant == 7)
+  {
+    gi->SetProxiesData(nullptr);
+  }
+  for (auto _ : state)
+  {
+    gi->Modified();
+    gi->Update();
+  }
+  state.SetItemsProcessed(state.iterations() * grid->GetNumberOfPoints());
+}
 } // namespace
 
 int main(int argc, char** argv)
 {
+  const char* plans[] = { "Plan/shadows only (baseline)", "Plan/bounce on, albedo 0 (skipped)",
+    "Plan/bounce on, albedo 0.8 (runs)", "Plan/shadowed bounce on, albedo 0 (skipped)",
+    "Plan/shadowed bounce on, albedo 0.8 (runs)", "Plan/local lights on, none (skipped)",
+    "Plan/one far tiny blocker (skipped per receiver)", "Plan/no proxies" };
+  for (int variant = 0; variant < 8; ++variant)
+  {
+    benchmark::RegisterBenchmark(plans[variant], BenchPlan, variant)->Unit(benchmark::kMillisecond);
+  }
   benchmark::RegisterBenchmark("FloatPeak", BenchFloatPeak);
   for (int order = 3; order <= 6; ++order)
   {
