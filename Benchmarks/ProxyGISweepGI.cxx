@@ -208,7 +208,7 @@ int main(int argc, char* argv[])
     configs.push_back(c);
   }
   {
-    Config c{ "plane blocking", "log-space cap (the GPU mapper's way)" };
+    Config c{ "plane blocking", "log-space cap (the image-space pass's way)" };
     c.Planes = vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE;
     configs.push_back(c);
   }

@@ -9,7 +9,8 @@
 //
 // --effects: instead, the GI pass run every frame with each effect added in
 // turn (a ground blocker plane carried by the light or in log space, the
-// one-bounce indirect light, three local lights), one scene.
+// one-bounce indirect light, three local lights, the shadowed bounce per
+// sphere and per object), one scene.
 #include "pgiOffscreenWindow.h"
 #include "vtkPGIGIPolyDataMapper.h"
 #include "vtkPGIGlobalIllumination.h"
@@ -117,8 +118,9 @@ int Effects(vtkRenderWindow* window, int resolution, int proxyCount, double budg
     static_cast<long long>(mesh->GetNumberOfPoints()), proxyCount);
   const char* names[] = { "shadows", "+ ground plane (in the light)", "+ ground plane (log space)",
     "+ plane, indirect (PlaneBounceShadows off)", "+ plane, indirect",
-    "+ plane, indirect, 3 local lights" };
-  for (int variant = 0; variant < 6; ++variant)
+    "+ plane, indirect, 3 local lights", "+ plane, shadowed indirect (spherical lights)",
+    "+ plane, shadowed indirect, per object" };
+  for (int variant = 0; variant < 8; ++variant)
   {
     vtkNew<vtkRenderer> renderer;
     vtkNew<vtkActor> actor;
@@ -135,6 +137,10 @@ int Effects(vtkRenderWindow* window, int resolution, int proxyCount, double budg
     gi->SetPlaneBlocking(variant == 2 ? vtkPGIGIPolyDataMapper::PLANES_IN_LOG_SPACE
                                       : vtkPGIGIPolyDataMapper::PLANES_IN_LIGHT);
     gi->SetIndirect(variant >= 3);
+    gi->SetIndirectMode(variant >= 6 ? vtkPGIGIPolyDataMapper::INDIRECT_MODE_SHADOWED
+                                     : vtkPGIGIPolyDataMapper::INDIRECT_MODE_UNSHADOWED);
+    gi->SetSphericalLightBlocking(variant == 7 ? vtkPGIGIPolyDataMapper::BLOCKING_PER_OBJECT
+                                               : vtkPGIGIPolyDataMapper::BLOCKING_PER_SPHERE);
     gi->SetPlaneBounceShadows(variant != 3);
     gi->SetInputData(mesh);
     actor->SetMapper(gi);
