@@ -7,6 +7,7 @@
 #include "pgiISLibrary.h"
 #include "pgiSHBasisGLSL.h"
 
+#include "pgiMaterial.h"
 #include "pgiSHBasis.h"
 #include "pgiSHExp.h"
 #include "pgiSHLightTables.h"
@@ -108,6 +109,33 @@ bool ReadProxies(vtkPolyData* proxies, std::vector<float>& spheres, std::string&
     spheres.insert(spheres.end(), { float(c[0]), float(c[1]), float(c[2]), float(r) });
   }
   return true;
+}
+
+void UploadProxyAlbedos(vtkOpenGLRenderWindow* window, vtkPolyData* proxies, int leaves,
+  const char* arrayName, const double fallback[3], std::vector<float>& texels,
+  vtkSmartPointer<vtkTextureObject>& texture)
+{
+  texels.clear();
+  vtkDataArray* level = proxies ? proxies->GetPointData()->GetArray("Level") : nullptr;
+  const vtkIdType count = leaves == 0 || !proxies ? 0 : proxies->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    if (level && level->GetTuple1(i) != 0.0)
+    {
+      continue;
+    }
+    double albedo[3];
+    AlbedoOf(proxies, arrayName, i, fallback, albedo);
+    texels.insert(texels.end(), { float(albedo[0]), float(albedo[1]), float(albedo[2]), 1.0f });
+  }
+  const int width = std::max(1, std::min(leaves, 1024));
+  const int rows = std::max(1, (leaves + width - 1) / width);
+  texels.resize(4 * static_cast<std::size_t>(width) * rows, 0.0f);
+  if (texture)
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
+  texture = FloatTexture(window, width, rows, 4, texels);
 }
 
 std::string SquareSource(int order)

@@ -33,6 +33,8 @@
 
 #include "ProxyGIRenderingModule.h"
 
+#include "vtkSmartPointer.h"
+
 #include <functional>
 #include <memory>
 #include <string>
@@ -41,6 +43,7 @@
 class vtkOpenGLRenderWindow;
 class vtkPolyData;
 class vtkShaderProgram;
+class vtkTextureObject;
 class vtkWindow;
 
 namespace proxygi
@@ -62,6 +65,17 @@ constexpr int MaxPlanes = 8;
  */
 PROXYGIRENDERING_EXPORT bool ReadProxies(
   vtkPolyData* proxies, std::vector<float>& spheres, std::string& error);
+
+/**
+ * The leaf proxies' albedo (Level 0 only; `arrayName` read as the filter
+ * reads it, else `fallback`) as RGBA texels laid out as GIResources lays
+ * out the spheres (rows of up to 1024), kept in `texels` and uploaded as a
+ * float texture that replaces `texture`. `leaves`: how many spheres
+ * ReadProxies gave (0: none are read).
+ */
+PROXYGIRENDERING_EXPORT void UploadProxyAlbedos(vtkOpenGLRenderWindow* window, vtkPolyData* proxies,
+  int leaves, const char* arrayName, const double fallback[3], std::vector<float>& texels,
+  vtkSmartPointer<vtkTextureObject>& texture);
 
 /// The indirect-light GLSL (pgiISLibrary.glsl: pgiProxyIndirectTerm,
 /// pgiResolveIndirect and their uniforms), to go after LibrarySource.

@@ -467,36 +467,8 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
     std::vector<float> planes(this->BlockerPlanes.begin(), this->BlockerPlanes.end());
     g.Resources.SetBlockers(g.Spheres, planes);
     g.ProxyCount = static_cast<int>(g.Spheres.size() / 4);
-    // The proxies' albedo (as the filter reads it, Level 0 only), laid out
-    // as GIResources lays out the spheres.
-    g.Albedos.clear();
-    vtkDataArray* level =
-      this->Proxies ? this->Proxies->GetPointData()->GetArray("Level") : nullptr;
-    const vtkIdType count = g.ProxyCount == 0 ? 0 : this->Proxies->GetNumberOfPoints();
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      if (level && level->GetTuple1(i) != 0.0)
-      {
-        continue;
-      }
-      double albedo[3];
-      proxygi::AlbedoOf(
-        this->Proxies, this->ProxyAlbedoArrayName, i, this->DefaultProxyAlbedo, albedo);
-      g.Albedos.insert(
-        g.Albedos.end(), { float(albedo[0]), float(albedo[1]), float(albedo[2]), 1.0f });
-    }
-    const int width = std::max(1, std::min(g.ProxyCount, 1024));
-    const int rows = std::max(1, (g.ProxyCount + width - 1) / width);
-    g.Albedos.resize(4 * static_cast<std::size_t>(width) * rows, 0.0f);
-    if (g.ProxyAlbedo)
-    {
-      g.ProxyAlbedo->ReleaseGraphicsResources(window);
-    }
-    g.ProxyAlbedo = vtkSmartPointer<vtkTextureObject>::New();
-    g.ProxyAlbedo->SetContext(window);
-    g.ProxyAlbedo->SetMinificationFilter(vtkTextureObject::Nearest);
-    g.ProxyAlbedo->SetMagnificationFilter(vtkTextureObject::Nearest);
-    g.ProxyAlbedo->Create2DFromRaw(width, rows, 4, VTK_FLOAT, g.Albedos.data());
+    proxygi::gpu::UploadProxyAlbedos(window, this->Proxies, g.ProxyCount,
+      this->ProxyAlbedoArrayName, this->DefaultProxyAlbedo, g.Albedos, g.ProxyAlbedo);
     proxiesChanged = true;
     if (proxiesTime != g.ProxiesTime)
     {

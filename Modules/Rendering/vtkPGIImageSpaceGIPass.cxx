@@ -759,36 +759,8 @@ void vtkPGIImageSpaceGIPass::Render(const vtkRenderState* s)
     std::to_string(this->DefaultProxyAlbedo[1]) + " " + std::to_string(this->DefaultProxyAlbedo[2]);
   if (this->Indirect && (g.AlbedoDirty || albedoKey != g.AlbedoKey))
   {
-    g.Albedos.clear();
-    vtkDataArray* level =
-      this->Proxies ? this->Proxies->GetPointData()->GetArray("Level") : nullptr;
-    const vtkIdType count =
-      g.Spheres.empty() || !this->Proxies ? 0 : this->Proxies->GetNumberOfPoints();
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      if (level && level->GetTuple1(i) != 0.0)
-      {
-        continue;
-      }
-      double albedo[3];
-      proxygi::AlbedoOf(
-        this->Proxies, this->ProxyAlbedoArrayName, i, this->DefaultProxyAlbedo, albedo);
-      g.Albedos.insert(
-        g.Albedos.end(), { float(albedo[0]), float(albedo[1]), float(albedo[2]), 1.0f });
-    }
-    const int spheres = static_cast<int>(g.Spheres.size() / 4);
-    const int width = std::max(1, std::min(spheres, 1024)); // GIResources' layout
-    const int rows = std::max(1, (spheres + width - 1) / width);
-    g.Albedos.resize(4 * static_cast<std::size_t>(width) * rows, 0.0f);
-    if (g.ProxyAlbedo)
-    {
-      g.ProxyAlbedo->ReleaseGraphicsResources(window);
-    }
-    g.ProxyAlbedo = vtkSmartPointer<vtkTextureObject>::New();
-    g.ProxyAlbedo->SetContext(window);
-    g.ProxyAlbedo->SetMinificationFilter(vtkTextureObject::Nearest);
-    g.ProxyAlbedo->SetMagnificationFilter(vtkTextureObject::Nearest);
-    g.ProxyAlbedo->Create2DFromRaw(width, rows, 4, VTK_FLOAT, g.Albedos.data());
+    proxygi::gpu::UploadProxyAlbedos(window, this->Proxies, static_cast<int>(g.Spheres.size() / 4),
+      this->ProxyAlbedoArrayName, this->DefaultProxyAlbedo, g.Albedos, g.ProxyAlbedo);
     g.AlbedoDirty = false;
     g.AlbedoKey = albedoKey;
   }

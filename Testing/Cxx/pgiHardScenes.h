@@ -167,6 +167,32 @@ inline HardScene HardSweep(int count, double height)
   return { "sweep", line, HardProxies({ { 0.0, 0.0, height, 1.0, 0 } }) };
 }
 
+/// The scene scaled by `scale` about the origin (receivers, proxy centres
+/// and radii).
+inline HardScene HardScaled(const HardScene& base, double scale)
+{
+  HardScene scaled = base;
+  scaled.Receivers = vtkSmartPointer<vtkPolyData>::New();
+  scaled.Receivers->DeepCopy(base.Receivers);
+  scaled.Proxies = vtkSmartPointer<vtkPolyData>::New();
+  scaled.Proxies->DeepCopy(base.Proxies);
+  for (vtkPolyData* data : { scaled.Receivers.Get(), scaled.Proxies.Get() })
+  {
+    for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+    {
+      double x[3];
+      data->GetPoint(i, x);
+      data->GetPoints()->SetPoint(i, scale * x[0], scale * x[1], scale * x[2]);
+    }
+  }
+  vtkDataArray* radius = scaled.Proxies->GetPointData()->GetArray("Radius");
+  for (vtkIdType i = 0; i < radius->GetNumberOfTuples(); ++i)
+  {
+    radius->SetTuple1(i, scale * radius->GetTuple1(i));
+  }
+  return scaled;
+}
+
 /// A uniform white sky, a spherical light and a point light.
 inline vtkSmartPointer<vtkPGILighting> HardLighting()
 {

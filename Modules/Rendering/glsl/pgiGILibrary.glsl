@@ -68,55 +68,42 @@ float pgiAsin(float x)
   return x < 0.0 ? -y : y;
 }
 
-// CapTables::CapLog (float path): linear interpolation between rows.
-void pgiCapLog(float theta, out float zh[PGI_SH_ORDER])
+// The tables' lookup (CapTables and IndirectTables, float path): theta
+// clamped to [0, (resolution - 1) / thetaScale], linear interpolation
+// between the rows of `table` (texel (l, row): band l's scaled ZH value).
+void pgiTableRows(sampler2D table, int resolution, float thetaScale, float theta,
+  out float zh[PGI_SH_ORDER])
 {
-  int last = pgiCapResolution - 1;
-  float u = theta * pgiCapThetaScale;
+  int last = resolution - 1;
+  float u = theta * thetaScale;
   u = u > 0.0 ? (u < float(last) ? u : float(last)) : 0.0;
   int i = int(u);
   i = i < last ? i : last - 1;
   float t = u - float(i);
   for (int l = 0; l < PGI_SH_ORDER; ++l)
   {
-    float r0 = texelFetch(pgiCapLogTable, ivec2(l, i), 0).r;
-    float r1 = texelFetch(pgiCapLogTable, ivec2(l, i + 1), 0).r;
+    float r0 = texelFetch(table, ivec2(l, i), 0).r;
+    float r1 = texelFetch(table, ivec2(l, i + 1), 0).r;
     zh[l] = r0 + (r1 - r0) * t;
   }
 }
 
-// CapTables::CapVisibility (float path), same interpolation as pgiCapLog.
+// CapTables::CapLog (float path).
+void pgiCapLog(float theta, out float zh[PGI_SH_ORDER])
+{
+  pgiTableRows(pgiCapLogTable, pgiCapResolution, pgiCapThetaScale, theta, zh);
+}
+
+// CapTables::CapVisibility (float path).
 void pgiCapVisibility(float theta, out float zh[PGI_SH_ORDER])
 {
-  int last = pgiCapResolution - 1;
-  float u = theta * pgiCapThetaScale;
-  u = u > 0.0 ? (u < float(last) ? u : float(last)) : 0.0;
-  int i = int(u);
-  i = i < last ? i : last - 1;
-  float t = u - float(i);
-  for (int l = 0; l < PGI_SH_ORDER; ++l)
-  {
-    float r0 = texelFetch(pgiCapVisTable, ivec2(l, i), 0).r;
-    float r1 = texelFetch(pgiCapVisTable, ivec2(l, i + 1), 0).r;
-    zh[l] = r0 + (r1 - r0) * t;
-  }
+  pgiTableRows(pgiCapVisTable, pgiCapResolution, pgiCapThetaScale, theta, zh);
 }
 
 // IndirectTables::AveragedIndirect (float path): D(theta) as scaled ZH.
 void pgiAveragedIndirect(float theta, out float zh[PGI_SH_ORDER])
 {
-  int last = pgiDResolution - 1;
-  float u = theta * pgiDThetaScale;
-  u = u > 0.0 ? (u < float(last) ? u : float(last)) : 0.0;
-  int i = int(u);
-  i = i < last ? i : last - 1;
-  float t = u - float(i);
-  for (int l = 0; l < PGI_SH_ORDER; ++l)
-  {
-    float r0 = texelFetch(pgiDTable, ivec2(l, i), 0).r;
-    float r1 = texelFetch(pgiDTable, ivec2(l, i + 1), 0).r;
-    zh[l] = r0 + (r1 - r0) * t;
-  }
+  pgiTableRows(pgiDTable, pgiDResolution, pgiDThetaScale, theta, zh);
 }
 
 // sh::RotateScaledZonal: out_lm = zh_l y_lm(d).

@@ -27,18 +27,7 @@ uniform float pgiWThetaScale;
 // IndirectTables::SphericalLightWeight (float path): w_theta as scaled ZH.
 void pgiSphericalLightWeight(float theta, out float zh[PGI_SH_ORDER])
 {
-  int last = pgiWResolution - 1;
-  float u = theta * pgiWThetaScale;
-  u = u > 0.0 ? (u < float(last) ? u : float(last)) : 0.0;
-  int i = int(u);
-  i = i < last ? i : last - 1;
-  float t = u - float(i);
-  for (int l = 0; l < PGI_SH_ORDER; ++l)
-  {
-    float r0 = texelFetch(pgiWTable, ivec2(l, i), 0).r;
-    float r1 = texelFetch(pgiWTable, ivec2(l, i + 1), 0).r;
-    zh[l] = r0 + (r1 - r0) * t;
-  }
+  pgiTableRows(pgiWTable, pgiWResolution, pgiWThetaScale, theta, zh);
 }
 
 // IndirectTables::SphericalLightRadiance for the three channels of light

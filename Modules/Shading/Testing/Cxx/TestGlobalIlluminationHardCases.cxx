@@ -147,25 +147,7 @@ int TestGlobalIlluminationHardCases(int, char*[])
       std::vector<double> reference;
       for (double scale : { 1.0, 1e-4, 1e4 })
       {
-        pgitest::HardScene scaled = base;
-        scaled.Receivers = vtkSmartPointer<vtkPolyData>::New();
-        scaled.Receivers->DeepCopy(base.Receivers);
-        scaled.Proxies = vtkSmartPointer<vtkPolyData>::New();
-        scaled.Proxies->DeepCopy(base.Proxies);
-        for (vtkPolyData* data : { scaled.Receivers.Get(), scaled.Proxies.Get() })
-        {
-          for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
-          {
-            double x[3];
-            data->GetPoint(i, x);
-            data->GetPoints()->SetPoint(i, scale * x[0], scale * x[1], scale * x[2]);
-          }
-        }
-        vtkDataArray* radius = scaled.Proxies->GetPointData()->GetArray("Radius");
-        for (vtkIdType i = 0; i < radius->GetNumberOfTuples(); ++i)
-        {
-          radius->SetTuple1(i, scale * radius->GetTuple1(i));
-        }
+        const pgitest::HardScene scaled = pgitest::HardScaled(base, scale);
         vtkSmartPointer<vtkPolyData> out = Run(scaled, sky, mode, -1.5 * scale);
         vtkDataArray* r = out->GetPointData()->GetArray("Radiance");
         double worst = 0.0, peak = 0.0;
