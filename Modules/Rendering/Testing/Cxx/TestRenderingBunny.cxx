@@ -6,6 +6,7 @@
 // (Testing/Data/bunny-proxies-32.vtp), so the image does not follow changes
 // of that algorithm. Checks GPU against CPU on the bunny, then the image.
 // Needs the data set-up fetches (skipped without it).
+#include "pgiBunnyScene.h"
 #include "pgiOffscreenWindow.h"
 #include "pgiTesting.h"
 #include "vtkPGIEXRReader.h"
@@ -38,12 +39,8 @@
 
 int TestRenderingBunny(int argc, char* argv[])
 {
-  const std::string bunnyPath = std::string(PROXYGI_DATA_DIR) + "/meshes/bunny00.off";
-  const std::string forestPath = std::string(PROXYGI_DATA_DIR) + "/environments/forest.exr";
-  if (!vtksys::SystemTools::FileExists(bunnyPath) || !vtksys::SystemTools::FileExists(forestPath))
+  if (!pgitest::BunnyDataPresent())
   {
-    std::printf("skipped: %s or %s missing (run Utilities/setup.sh --data)\n", bunnyPath.c_str(),
-      forestPath.c_str());
     return VTK_SKIP_RETURN_CODE;
   }
   std::string description;
@@ -55,20 +52,7 @@ int TestRenderingBunny(int argc, char* argv[])
   }
 
   // The bunny as the default scene places it: z up, feet on z = 0.
-  vtkNew<vtkPGIOFFReader> reader;
-  reader->SetFileName(bunnyPath.c_str());
-  vtkNew<vtkTransform> place;
-  place->PostMultiply();
-  place->RotateX(90);
-  place->Translate(0, 0, 0.494);
-  vtkNew<vtkTransformPolyDataFilter> moved;
-  moved->SetInputConnection(reader->GetOutputPort());
-  moved->SetTransform(place);
-  vtkNew<vtkPolyDataNormals> normals;
-  normals->SetInputConnection(moved->GetOutputPort());
-  normals->SplittingOff();
-  normals->Update();
-  vtkPolyData* bunny = normals->GetOutput();
+  vtkSmartPointer<vtkPolyData> bunny = pgitest::PlacedBunny();
 
   vtkNew<vtkPlaneSource> ground;
   ground->SetOrigin(-3, -3, 0);
@@ -76,18 +60,10 @@ int TestRenderingBunny(int argc, char* argv[])
   ground->SetPoint2(-3, 3, 0);
   ground->SetResolution(96, 96);
 
-  vtkNew<vtkXMLPolyDataReader> proxiesReader;
-  const std::string proxiesPath = std::string(PGI_RENDERING_TEST_DATA) + "/bunny-proxies-32.vtp";
-  proxiesReader->SetFileName(proxiesPath.c_str());
-  proxiesReader->Update();
-  vtkPolyData* proxies = proxiesReader->GetOutput();
+  vtkSmartPointer<vtkPolyData> proxies = pgitest::BunnyProxies();
   PGI_CHECK(proxies->GetNumberOfPoints() == 32);
 
-  vtkNew<vtkPGIEXRReader> forest;
-  forest->SetFileName(forestPath.c_str());
-  forest->Update();
-  vtkNew<vtkPGILighting> lighting;
-  lighting->SetEnvironmentImage(forest->GetOutput());
+  vtkSmartPointer<vtkPGILighting> lighting = pgitest::ForestLighting();
 
   const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
   vtkNew<vtkPGIGIPolyDataMapper> bunnyMapper, groundMapper;

@@ -5,35 +5,25 @@
 // takes its hue), no NaN pixel (all pixels finite in the visibility buffer),
 // then the image against its baseline. Needs the data set-up fetches
 // (skipped without it).
+#include "pgiBunnyScene.h"
 #include "pgiOffscreenWindow.h"
 #include "pgiTesting.h"
-#include "vtkPGIEXRReader.h"
 #include "vtkPGIImageSpaceGIPass.h"
 #include "vtkPGILighting.h"
-#include "vtkPGIOFFReader.h"
 
 #include "vtkActor.h"
-#include "vtkAppendPolyData.h"
-#include "vtkCamera.h"
-#include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkProperty.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
 #include "vtkTesting.h"
-#include "vtkTransform.h"
-#include "vtkTransformPolyDataFilter.h"
 #include "vtkUnsignedCharArray.h"
-#include "vtkXMLPolyDataReader.h"
-#include "vtksys/SystemTools.hxx"
 
 #include <cmath>
 #include <cstdio>
@@ -50,12 +40,8 @@ double Linear(unsigned char v)
 
 int TestRenderingImageSpaceScene(int argc, char* argv[])
 {
-  const std::string bunnyPath = std::string(PROXYGI_DATA_DIR) + "/meshes/bunny00.off";
-  const std::string forestPath = std::string(PROXYGI_DATA_DIR) + "/environments/forest.exr";
-  if (!vtksys::SystemTools::FileExists(bunnyPath) || !vtksys::SystemTools::FileExists(forestPath))
+  if (!pgitest::BunnyDataPresent())
   {
-    std::printf("skipped: %s or %s missing (run Utilities/setup.sh --data)\n", bunnyPath.c_str(),
-      forestPath.c_str());
     return VTK_SKIP_RETURN_CODE;
   }
   std::string description;
@@ -66,46 +52,12 @@ int TestRenderingImageSpaceScene(int argc, char* argv[])
     return EXIT_FAILURE;
   }
 
-  vtkNew<vtkPGIOFFReader> reader;
-  reader->SetFileName(bunnyPath.c_str());
-  vtkNew<vtkTransform> place;
-  place->PostMultiply();
-  place->RotateX(90);
-  place->Translate(0, 0, 0.494);
-  vtkNew<vtkTransformPolyDataFilter> bunny;
-  bunny->SetInputConnection(reader->GetOutputPort());
-  bunny->SetTransform(place);
-
   // Proxies: the bunny's committed 32, grey, and the balls exactly, coloured.
-  vtkNew<vtkXMLPolyDataReader> proxiesReader;
-  const std::string proxiesPath = std::string(PGI_RENDERING_TEST_DATA) + "/bunny-proxies-32.vtp";
-  proxiesReader->SetFileName(proxiesPath.c_str());
-  proxiesReader->Update();
-  vtkPolyData* bunnyProxies = proxiesReader->GetOutput();
-  vtkNew<vtkPoints> centres;
-  vtkNew<vtkFloatArray> radii, albedos;
-  radii->SetName("Radius");
-  albedos->SetName("Albedo");
-  albedos->SetNumberOfComponents(3);
-  vtkDataArray* bunnyRadii = bunnyProxies->GetPointData()->GetArray("Radius");
-  for (vtkIdType i = 0; i < bunnyProxies->GetNumberOfPoints(); ++i)
-  {
-    centres->InsertNextPoint(bunnyProxies->GetPoint(i));
-    radii->InsertNextValue(static_cast<float>(bunnyRadii->GetTuple1(i)));
-    albedos->InsertNextTuple3(0.8, 0.8, 0.8);
-  }
-  struct Ball
-  {
-    double Centre[3], Radius, Albedo[3];
-  };
-  const Ball balls[2] = { { { -0.95, 0.35, 0.35 }, 0.35, { 0.9, 0.1, 0.1 } },
-    { { 0.85, 0.45, 0.35 }, 0.35, { 0.1, 0.8, 0.15 } } };
+  const pgitest::BallScene scene;
+  vtkSmartPointer<vtkPolyData> proxies = scene.Proxies(false);
   vtkNew<vtkRenderer> renderer;
-  for (const Ball& b : balls)
+  for (const auto& b : scene.Balls)
   {
-    centres->InsertNextPoint(b.Centre);
-    radii->InsertNextValue(static_cast<float>(b.Radius));
-    albedos->InsertNextTuple3(b.Albedo[0], b.Albedo[1], b.Albedo[2]);
     vtkNew<vtkSphereSource> sphere;
     sphere->SetCenter(b.Centre);
     sphere->SetRadius(b.Radius);
@@ -118,35 +70,25 @@ int TestRenderingImageSpaceScene(int argc, char* argv[])
     actor->GetProperty()->SetColor(b.Albedo[0], b.Albedo[1], b.Albedo[2]);
     renderer->AddActor(actor);
   }
-  vtkNew<vtkPolyData> proxies;
-  proxies->SetPoints(centres);
-  proxies->GetPointData()->AddArray(radii);
-  proxies->GetPointData()->AddArray(albedos);
 
   vtkNew<vtkPlaneSource> ground;
   ground->SetOrigin(-3, -3, 0);
   ground->SetPoint1(3, -3, 0);
   ground->SetPoint2(-3, 3, 0);
   ground->SetResolution(32, 32);
-  vtkNew<vtkPolyDataNormals> bunnyNormals;
-  bunnyNormals->SetInputConnection(bunny->GetOutputPort());
-  bunnyNormals->SplittingOff();
-  for (vtkAlgorithm* source : { static_cast<vtkAlgorithm*>(bunnyNormals.Get()),
-         static_cast<vtkAlgorithm*>(ground.Get()) })
+  ground->Update();
+  vtkSmartPointer<vtkPolyData> bunny = pgitest::PlacedBunny();
+  for (vtkPolyData* mesh : { bunny.Get(), ground->GetOutput() })
   {
     vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(source->GetOutputPort());
+    mapper->SetInputData(mesh);
     vtkNew<vtkActor> actor;
     actor->SetMapper(mapper);
     actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
     renderer->AddActor(actor);
   }
 
-  vtkNew<vtkPGIEXRReader> forest;
-  forest->SetFileName(forestPath.c_str());
-  forest->Update();
-  vtkNew<vtkPGILighting> lighting;
-  lighting->SetEnvironmentImage(forest->GetOutput());
+  vtkSmartPointer<vtkPGILighting> lighting = pgitest::ForestLighting();
   vtkNew<vtkPGIImageSpaceGIPass> pass;
   pass->SetProxies(proxies);
   pass->SetLighting(lighting);
@@ -158,11 +100,7 @@ int TestRenderingImageSpaceScene(int argc, char* argv[])
   renderer->SetBackground(0.1, 0.1, 0.12);
   window->AddRenderer(renderer);
   window->SetSize(300, 300);
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0.3, -3.4, 2.2);
-  camera->SetFocalPoint(0, 0.2, 0.3);
-  camera->SetViewUp(0, 0, 1);
-  camera->SetViewAngle(35);
+  pgitest::BallScene::SetCamera(renderer->GetActiveCamera());
   renderer->ResetCameraClippingRange();
 
   // Ground points next to each ball (on the camera side), with and without
@@ -172,16 +110,16 @@ int TestRenderingImageSpaceScene(int argc, char* argv[])
     renderer->SetWorldPoint(at[0], at[1], at[2], 1.0);
     renderer->WorldToDisplay();
     const double* d = renderer->GetDisplayPoint();
-    unsigned char* pixel = window->GetPixelData(
-      static_cast<int>(d[0]), static_cast<int>(d[1]), static_cast<int>(d[0]),
-      static_cast<int>(d[1]), 0);
+    unsigned char* pixel = window->GetPixelData(static_cast<int>(d[0]), static_cast<int>(d[1]),
+      static_cast<int>(d[0]), static_cast<int>(d[1]), 0);
     for (int c = 0; c < 3; ++c)
     {
       rgb[c] = Linear(pixel[c]);
     }
     delete[] pixel;
   };
-  const double nearRed[3] = { -0.95, -0.05, 0.0 }, nearGreen[3] = { 0.85, 0.05, 0.0 };
+  const double* nearRed = scene.NearRed;
+  const double* nearGreen = scene.NearGreen;
   double redOff[3], greenOff[3], redOn[3], greenOn[3];
   window->Render();
   groundColour(nearRed, redOff);

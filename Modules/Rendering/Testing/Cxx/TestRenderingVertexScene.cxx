@@ -7,31 +7,23 @@
 // image (shadowed bounce) against its baseline. The same scene as
 // TestRenderingImageSpaceScene, per vertex. Needs the data set-up fetches
 // (skipped without it).
+#include "pgiBunnyScene.h"
 #include "pgiOffscreenWindow.h"
 #include "pgiTesting.h"
-#include "vtkPGIEXRReader.h"
 #include "vtkPGIGIPolyDataMapper.h"
 #include "vtkPGILighting.h"
-#include "vtkPGIOFFReader.h"
 
 #include "vtkActor.h"
-#include "vtkCamera.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
 #include "vtkTesting.h"
-#include "vtkTransform.h"
-#include "vtkTransformPolyDataFilter.h"
-#include "vtkXMLPolyDataReader.h"
-#include "vtksys/SystemTools.hxx"
 
 #include <cmath>
 #include <cstdio>
@@ -40,12 +32,8 @@
 
 int TestRenderingVertexScene(int argc, char* argv[])
 {
-  const std::string bunnyPath = std::string(PROXYGI_DATA_DIR) + "/meshes/bunny00.off";
-  const std::string forestPath = std::string(PROXYGI_DATA_DIR) + "/environments/forest.exr";
-  if (!vtksys::SystemTools::FileExists(bunnyPath) || !vtksys::SystemTools::FileExists(forestPath))
+  if (!pgitest::BunnyDataPresent())
   {
-    std::printf("skipped: %s or %s missing (run Utilities/setup.sh --data)\n", bunnyPath.c_str(),
-      forestPath.c_str());
     return VTK_SKIP_RETURN_CODE;
   }
   std::string description;
@@ -56,61 +44,19 @@ int TestRenderingVertexScene(int argc, char* argv[])
     return EXIT_FAILURE;
   }
 
-  vtkNew<vtkPGIOFFReader> reader;
-  reader->SetFileName(bunnyPath.c_str());
-  vtkNew<vtkTransform> place;
-  place->PostMultiply();
-  place->RotateX(90);
-  place->Translate(0, 0, 0.494);
-  vtkNew<vtkTransformPolyDataFilter> bunny;
-  bunny->SetInputConnection(reader->GetOutputPort());
-  bunny->SetTransform(place);
-  vtkNew<vtkPolyDataNormals> bunnyNormals;
-  bunnyNormals->SetInputConnection(bunny->GetOutputPort());
-  bunnyNormals->SplittingOff();
-  bunnyNormals->Update();
-
   // Proxies: the bunny's committed 32 (object 0, grey), the balls exactly
   // (objects 1 and 2, coloured).
-  vtkNew<vtkXMLPolyDataReader> proxiesReader;
-  const std::string proxiesPath = std::string(PGI_RENDERING_TEST_DATA) + "/bunny-proxies-32.vtp";
-  proxiesReader->SetFileName(proxiesPath.c_str());
-  proxiesReader->Update();
-  vtkPolyData* bunnyProxies = proxiesReader->GetOutput();
-  vtkNew<vtkPoints> centres;
-  vtkNew<vtkFloatArray> radii, albedos, objects;
-  radii->SetName("Radius");
-  albedos->SetName("Albedo");
-  albedos->SetNumberOfComponents(3);
-  objects->SetName("ObjectId");
-  vtkDataArray* bunnyRadii = bunnyProxies->GetPointData()->GetArray("Radius");
-  for (vtkIdType i = 0; i < bunnyProxies->GetNumberOfPoints(); ++i)
-  {
-    centres->InsertNextPoint(bunnyProxies->GetPoint(i));
-    radii->InsertNextValue(static_cast<float>(bunnyRadii->GetTuple1(i)));
-    albedos->InsertNextTuple3(0.8, 0.8, 0.8);
-    objects->InsertNextValue(0);
-  }
-  struct Ball
-  {
-    double Centre[3], Radius, Albedo[3];
-  };
-  const Ball balls[2] = { { { -0.95, 0.35, 0.35 }, 0.35, { 0.9, 0.1, 0.1 } },
-    { { 0.85, 0.45, 0.35 }, 0.35, { 0.1, 0.8, 0.15 } } };
+  const pgitest::BallScene balls;
+  vtkSmartPointer<vtkPolyData> proxies = balls.Proxies(true);
   struct Object
   {
     vtkSmartPointer<vtkPolyData> Mesh;
     double Albedo[3];
   };
   std::vector<Object> scene;
-  scene.push_back({ bunnyNormals->GetOutput(), { 0.8, 0.8, 0.8 } });
-  for (int k = 0; k < 2; ++k)
+  scene.push_back({ pgitest::PlacedBunny(), { 0.8, 0.8, 0.8 } });
+  for (const auto& b : balls.Balls)
   {
-    const Ball& b = balls[k];
-    centres->InsertNextPoint(b.Centre);
-    radii->InsertNextValue(static_cast<float>(b.Radius));
-    albedos->InsertNextTuple3(b.Albedo[0], b.Albedo[1], b.Albedo[2]);
-    objects->InsertNextValue(static_cast<float>(k + 1));
     vtkNew<vtkSphereSource> sphere;
     sphere->SetCenter(b.Centre);
     sphere->SetRadius(b.Radius);
@@ -119,11 +65,6 @@ int TestRenderingVertexScene(int argc, char* argv[])
     sphere->Update();
     scene.push_back({ sphere->GetOutput(), { b.Albedo[0], b.Albedo[1], b.Albedo[2] } });
   }
-  vtkNew<vtkPolyData> proxies;
-  proxies->SetPoints(centres);
-  proxies->GetPointData()->AddArray(radii);
-  proxies->GetPointData()->AddArray(albedos);
-  proxies->GetPointData()->AddArray(objects);
   vtkNew<vtkPlaneSource> ground;
   ground->SetOrigin(-3, -3, 0);
   ground->SetPoint1(3, -3, 0);
@@ -132,11 +73,7 @@ int TestRenderingVertexScene(int argc, char* argv[])
   ground->Update();
   scene.push_back({ ground->GetOutput(), { 0.8, 0.8, 0.8 } });
 
-  vtkNew<vtkPGIEXRReader> forest;
-  forest->SetFileName(forestPath.c_str());
-  forest->Update();
-  vtkNew<vtkPGILighting> lighting;
-  lighting->SetEnvironmentImage(forest->GetOutput());
+  vtkSmartPointer<vtkPGILighting> lighting = pgitest::ForestLighting();
   vtkNew<vtkRenderer> renderer;
   std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> mappers;
   const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 }, grey[3] = { 0.8, 0.8, 0.8 };
@@ -157,11 +94,7 @@ int TestRenderingVertexScene(int argc, char* argv[])
   renderer->SetBackground(0.1, 0.1, 0.12);
   window->AddRenderer(renderer);
   window->SetSize(300, 300);
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0.3, -3.4, 2.2);
-  camera->SetFocalPoint(0, 0.2, 0.3);
-  camera->SetViewUp(0, 0, 1);
-  camera->SetViewAngle(35);
+  pgitest::BallScene::SetCamera(renderer->GetActiveCamera());
   renderer->ResetCameraClippingRange();
 
   // The ground's vertex next to each ball (on the camera side), read back.
@@ -183,8 +116,7 @@ int TestRenderingVertexScene(int argc, char* argv[])
     }
     return best;
   };
-  const double nearRedAt[3] = { -0.95, -0.05, 0.0 }, nearGreenAt[3] = { 0.85, 0.05, 0.0 };
-  const vtkIdType nearRed = nearest(nearRedAt), nearGreen = nearest(nearGreenAt);
+  const vtkIdType nearRed = nearest(balls.NearRed), nearGreen = nearest(balls.NearGreen);
   const auto groundRadiance = [&](vtkIdType i, double rgb[3])
   {
     vtkNew<vtkFloatArray> radiance;
