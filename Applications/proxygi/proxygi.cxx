@@ -153,7 +153,7 @@ int main(int argc, char* argv[])
   const proxygi::cli::Args args(argv + 2, argv + argc);
   if (command == "--version")
   {
-    std::printf("proxygi 0.1.0\n");
+    std::printf("proxygi %s\n", PROXYGI_VERSION);
     return 0;
   }
   if (command == "render")
