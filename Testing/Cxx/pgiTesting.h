@@ -55,6 +55,21 @@ inline bool Below(double a, double bound, const char* what, const char* file, in
   }
   return ok;
 }
+/// How many values of a VTK data array (any with GetNumberOfTuples,
+/// GetNumberOfComponents and GetComponent) are NaN or infinite.
+template <class Array>
+long NonFiniteValues(Array* array)
+{
+  long bad = 0;
+  for (long t = 0; t < static_cast<long>(array->GetNumberOfTuples()); ++t)
+  {
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+    {
+      bad += std::isfinite(array->GetComponent(t, c)) ? 0 : 1;
+    }
+  }
+  return bad;
+}
 } // namespace pgitest
 
 #define PGI_CHECK(cond) pgitest::Check((cond), #cond, __FILE__, __LINE__)

@@ -286,7 +286,7 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
     pgitest::Below(
       rad.RelativeMax(), 20 * maxRadianceBound, (what + ": radiance").c_str(), __FILE__, __LINE__);
     pgitest::Below(
-      vis.Max, 200 * maxVisibilityBound, (what + ": visibility").c_str(), __FILE__, __LINE__);
+      vis.Max, 20 * maxVisibilityBound, (what + ": visibility").c_str(), __FILE__, __LINE__);
     pgitest::Below(
       rad.RelativeRMS(), maxRadianceBound, (what + ": RMS").c_str(), __FILE__, __LINE__);
   }

@@ -223,6 +223,9 @@ int TestRenderingImageSpaceIndirect(int, char*[])
   Compare(shadowsOnly, perVertexDirect, background, rmse, worst, over8, 96);
   std::printf("ground, direct only, 1/1 vs CPU per-vertex: relative RMSE %.3f%%, max %d levels\n",
     100 * rmse, worst);
+  // Measured 0.45%, 1 level.
+  PGI_BELOW(rmse, 0.01);
+  PGI_BELOW(worst, 3);
   Compare(full, perVertex, background, rmse, worst, over8, 96);
   std::printf("ground, direct + indirect, 1/1 vs CPU per-vertex: relative RMSE %.3f%%, max %d "
               "levels, %d pixels off by more than 8\n",
@@ -233,6 +236,11 @@ int TestRenderingImageSpaceIndirect(int, char*[])
   std::printf("whole image (the ball too), 1/1 vs CPU per-vertex: relative RMSE %.3f%%, max %d "
               "levels\n",
     100 * rmse, worst);
+  // Measured 1.0%, 16 levels: the ball's underside differs most, since the
+  // CPU filter dims the ground's bounce by the proxies' shadow and the pass
+  // does not (Documentation/Rendering.md).
+  PGI_BELOW(rmse, 0.02);
+  PGI_BELOW(worst, 24);
 
   // Indirect light adds light everywhere, and red light from the ball to
   // the ground around its shadow (rows 40-96, columns 90-166 of the image).

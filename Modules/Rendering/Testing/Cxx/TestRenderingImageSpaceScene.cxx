@@ -12,6 +12,7 @@
 #include "vtkPGILighting.h"
 
 #include "vtkActor.h"
+#include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
@@ -42,7 +43,7 @@ int TestRenderingImageSpaceScene(int argc, char* argv[])
 {
   if (!pgitest::BunnyDataPresent())
   {
-    return VTK_SKIP_RETURN_CODE;
+    return pgitest::MissingDataResult();
   }
   std::string description;
   vtkSmartPointer<vtkRenderWindow> window = proxygi::NewOffscreenRenderWindow(&description);
@@ -141,6 +142,16 @@ int TestRenderingImageSpaceScene(int argc, char* argv[])
   PGI_CHECK(redOn[0] - redOff[0] > 1.2 * (redOn[1] - redOff[1]));
   PGI_CHECK(greenOn[1] - greenOff[1] > 1.5 * (greenOn[0] - greenOff[0]));
   PGI_CHECK(redOn[0] > redOff[0] && greenOn[1] > greenOff[1]);
+  // No NaN: every SH coefficient of the receiver buffer is finite, and the
+  // buffer holds receivers.
+  vtkNew<vtkFloatArray> visibility, mask;
+  PGI_CHECK(pass->GetVisibilityBuffer(visibility, mask));
+  const long nonFinite = pgitest::NonFiniteValues(visibility.Get());
+  std::printf("receiver buffer: %lld samples x %d coefficients, %ld non-finite\n",
+    static_cast<long long>(visibility->GetNumberOfTuples()),
+    visibility->GetNumberOfComponents(), nonFinite);
+  PGI_CHECK(visibility->GetNumberOfTuples() > 0 && mask->GetRange(0)[1] > 0.5);
+  PGI_CHECK(nonFinite == 0);
 
   const int image = vtkRegressionTestImage(window);
   return (image == vtkTesting::FAILED || pgitest::Result() != EXIT_SUCCESS) ? EXIT_FAILURE

@@ -34,7 +34,7 @@ int TestRenderingVertexScene(int argc, char* argv[])
 {
   if (!pgitest::BunnyDataPresent())
   {
-    return VTK_SKIP_RETURN_CODE;
+    return pgitest::MissingDataResult();
   }
   std::string description;
   vtkSmartPointer<vtkRenderWindow> window = proxygi::NewOffscreenRenderWindow(&description);

@@ -23,12 +23,14 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
 #include "vtkSmartPointer.h"
+#include "vtkTesting.h"
 #include "vtkTransform.h"
 #include "vtkTransformPolyDataFilter.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace pgitest
@@ -50,9 +52,17 @@ inline bool BunnyDataPresent()
   {
     return true;
   }
-  std::printf("skipped: %s or %s missing (run Utilities/setup.sh --data)\n", BunnyPath().c_str(),
-    ForestPath().c_str());
+  std::printf("%s: %s or %s missing (run Utilities/setup.sh --data)\n",
+    PROXYGI_DATA_CONFIGURED ? "FAILED" : "skipped", BunnyPath().c_str(), ForestPath().c_str());
   return false;
+}
+
+/// What a test returns without the data: a skip, unless the data was there
+/// when the build was configured (PROXYGI_DATA_CONFIGURED), where a missing
+/// file is a failure.
+inline int MissingDataResult()
+{
+  return PROXYGI_DATA_CONFIGURED ? EXIT_FAILURE : VTK_SKIP_RETURN_CODE;
 }
 
 /// The bunny as the default scene places it (z up, feet on z = 0), with

@@ -50,6 +50,7 @@ int TestScene(int, char*[])
   PGI_CHECK(!scene.Indirect && scene.Shadows);
   PGI_CHECK(scene.Size[0] == 320 && scene.Size[1] == 200);
   PGI_CHECK(BuildScene(scene, loaded, error));
+  PGI_CHECK(loaded.Objects.size() == 2);
   if (loaded.Objects.size() == 2)
   {
     double b[6];
@@ -59,6 +60,14 @@ int TestScene(int, char*[])
     PGI_NEAR(loaded.Lighting->GetUniformRadiance()[0], 2.0, 0.0);
     PGI_NEAR(loaded.Lighting->GetEnvironmentRotation(), 30.0, 0.0);
     PGI_CHECK(loaded.Lighting->GetSphereLights().size() == 1);
+    PGI_CHECK(loaded.Lighting->GetPointLights().size() == 1);
+    if (loaded.Lighting->GetSphereLights().size() == 1)
+    {
+      const vtkPGILighting::SphereLight& light = loaded.Lighting->GetSphereLights()[0];
+      PGI_NEAR(light.Center[2], 5.0, 0.0);
+      PGI_NEAR(light.Radius, 0.5, 0.0);
+      PGI_NEAR(light.Radiance[1], 9.0, 0.0);
+    }
     PGI_NEAR(loaded.Camera->GetViewAngle(), 40.0, 0.0);
   }
 

@@ -35,6 +35,7 @@
 #include "vtkStringArray.h"
 #include "vtkTrivialProducer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -346,8 +347,9 @@ int Timing()
   {
     std::printf("  plan: %s\n", line.c_str());
   }
-  PGI_BELOW(es, 0.5);
-  PGI_BELOW(eo, 0.5);
+  // Measured 24.7% for both (unshadowed 26.2%).
+  PGI_BELOW(es, 0.35);
+  PGI_BELOW(eo, 0.35);
 
   // A real object: the cow (3 long), 16 variational spheres, on the ground.
   vtkNew<vtkPGIOFFReader> reader;
@@ -468,6 +470,9 @@ int Timing()
     // matters (legs and belly hide one another), and only the shadowed
     // bounce has it.
     PGI_CHECK(err[1] < 0.7 * err[0]);
+    // An empty shadowed output scores 100%, which the ratio alone allows.
+    PGI_BELOW(err[1], 0.9);
+    PGI_BELOW(err[2], 0.9);
   }
   return pgitest::Result();
 }
@@ -747,6 +752,16 @@ int TestShadowedIndirect(int argc, char* argv[])
     PGI_BELOW(eps, 0.36);
     PGI_BELOW(epo, 0.36);
     PGI_BELOW(diff, 0.05);
+    // The two blockings differ (a filter ignoring the setting gives 0), and
+    // the plan says which ran.
+    PGI_CHECK(diff > 1e-4);
+    auto says = [](const Run& run, const char* text)
+    {
+      return std::any_of(run.Plan.begin(), run.Plan.end(),
+        [&](const std::string& line) { return line.find(text) != std::string::npos; });
+    };
+    PGI_CHECK(says(perObject, "per-object") && !says(perObject, "per-sphere"));
+    PGI_CHECK(says(perSphere, "per-sphere") && !says(perSphere, "per-object"));
   }
 
   // 4. Local lights as spherical lights: a black sky, a spherical light over
@@ -782,12 +797,26 @@ int TestShadowedIndirect(int argc, char* argv[])
       lit->GetRange(0)[1], ref->GetRange(0)[1], 100 * e);
     const double meanLit = Mean(lit, lit->GetNumberOfTuples()),
                  meanRef = Mean(ref, lit->GetNumberOfTuples());
-    std::printf("  mean over the patch %.5f, reference %.5f\n", meanLit, meanRef);
+    // Away from the ball (beyond 1.5 of its axis), where no ringing reaches.
+    std::vector<char> away(lit->GetNumberOfTuples(), 0);
+    vtkPolyData* patch = gi->GetOutput();
+    for (vtkIdType i = 0; i < patch->GetNumberOfPoints(); ++i)
+    {
+      double x[3];
+      patch->GetPoint(i, x);
+      away[i] = x[0] * x[0] + x[1] * x[1] > 1.5 * 1.5;
+    }
+    const double eAway = RelativeRMSE(lit, ref, &away);
+    std::printf("  mean over the patch %.5f, reference %.5f; relative RMSE beyond 1.5 of the "
+                "ball's axis %.1f%%\n",
+      meanLit, meanRef, 100 * eAway);
     // Measured: mean 0.00062 against 0.00053; RMSE 100%, all of it right
     // under the ball, where the order-4 SH of its lit side leaks ~6% of the
-    // peak to the dark antipode (the clamped cosine truncated at order 4).
+    // peak to the dark antipode (the clamped cosine truncated at order 4);
+    // away from it 33.6% (an all-zero output scores 100% on both).
     PGI_NEAR(meanLit, meanRef, 0.25 * meanRef);
     PGI_BELOW(e, 1.2);
+    PGI_BELOW(eAway, 0.45);
     gi->SetLocalLights(false);
     gi->Update();
     PGI_CHECK(PlanHas(gi, "skipped (the environment is black and there are no local lights)"));

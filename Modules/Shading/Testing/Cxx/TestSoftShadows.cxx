@@ -178,8 +178,9 @@ int TestSoftShadows(int, char*[])
     gi->Update();
     const double v =
       gi->GetOutput()->GetPointData()->GetArray("DirectShadowed")->GetComponent(0, 0);
-    std::printf("vertical receiver over a ground plane: %.4f (exact 0.5)\n", v);
-    PGI_NEAR(v, 0.5, 0.05);
+    std::printf("vertical receiver over a ground plane: %.6f (exact 0.5)\n", v);
+    // The plane is carried by the light (the default), which is exact.
+    PGI_NEAR(v, 0.5, 1e-4);
   }
 
   // The plan: no blockers, no shadow work, and the unshadowed answer.

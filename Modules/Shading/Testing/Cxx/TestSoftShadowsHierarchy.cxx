@@ -18,6 +18,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 using namespace proxygi;
@@ -182,13 +183,22 @@ int TestSoftShadowsHierarchy(int, char*[])
       ref += a->GetComponent(i, 0) * a->GetComponent(i, 0);
       worst = std::max(worst, std::fabs(d));
     }
+    // The cut was made: the plan's average cut is smaller than the leaf
+    // set, and shading through it differs (a filter ignoring the angle
+    // would give 0 difference).
+    double cutSize = -1.0, leaves = -1.0;
     for (const std::string& line : cut->GetPlan())
     {
       std::printf("  plan: %s\n", line.c_str());
+      std::sscanf(line.c_str(), "hierarchy: %*d receiver clusters, cuts of %lf spheres on average "
+                                "(of %lf leaves)",
+        &cutSize, &leaves);
     }
     std::printf("filter with hierarchy (25 deg) against all leaves: relative RMSE %.3f%%, max "
                 "%.4f\n",
       100 * std::sqrt(sq / ref), worst);
+    PGI_CHECK(leaves > 1.0 && cutSize >= 1.0 && cutSize < 0.9 * leaves);
+    PGI_CHECK(worst > 1e-5);
     PGI_BELOW(std::sqrt(sq / ref), 0.005);
     PGI_BELOW(worst, 0.03);
     // Indirect light through the cut: parents reflect with their leaves'
