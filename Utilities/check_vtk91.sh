@@ -21,7 +21,7 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 
 packages=(
-  build-essential cmake ninja-build pkg-config python3
+  build-essential cmake ninja-build pkg-config file python3
   libvtk9-dev
   libembree-dev libopenexr-dev libglm-dev libeigen3-dev
   libegl-dev libglew-dev libgl1-mesa-dri
@@ -65,8 +65,26 @@ make_root() {
   touch "$root/.proxygi-ready"
 }
 
+# Packages added to the list since the root was made.
+missing_packages() {
+  local p
+  for p in "${packages[@]}"; do
+    chroot "$root" dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+      echo "$p"
+  done
+}
+
 mount_system
-[ -f "$root/.proxygi-ready" ] || make_root
+if [ ! -f "$root/.proxygi-ready" ]; then
+  make_root
+else
+  missing=($(missing_packages))
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo "check_vtk91: installing ${missing[*]}"
+    chroot "$root" env DEBIAN_FRONTEND=noninteractive \
+      apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  fi
+fi
 [ "${1:-}" = "--root" ] && exit 0
 
 mount --bind "$here" "$root/src" && mounted+=("$root/src")
