@@ -41,7 +41,36 @@ int TestOFFReader(int, char*[])
   {
     PGI_NEAR(mesh->GetPointData()->GetScalars()->GetComponent(1, 1), 255, 0);
   }
+  vtkDataArray* vertexColors = mesh->GetPointData()->GetScalars();
+  PGI_CHECK(vertexColors && vertexColors->GetNumberOfTuples() == 5);
+  if (vertexColors && vertexColors->GetNumberOfTuples() == 5)
+  {
+    // Every vertex colour as written; "1 1 1" is integers, so 0..255 units.
+    const double expect[5][3] = { { 255, 0, 0 }, { 0, 255, 0 }, { 0, 0, 255 }, { 1, 1, 1 },
+      { 10, 20, 30 } };
+    for (int i = 0; i < 5; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        PGI_NEAR(vertexColors->GetComponent(i, c), expect[i][c], 0);
+      }
+    }
+  }
   PGI_CHECK(mesh->GetCellData()->GetScalars() != nullptr);
+  vtkDataArray* faceColors = mesh->GetCellData()->GetScalars();
+  PGI_CHECK(faceColors && faceColors->GetNumberOfTuples() == 2);
+  if (faceColors && faceColors->GetNumberOfTuples() == 2)
+  {
+    // The quad has no colour (white); the triangle's is 200 100 50.
+    const double expect[2][3] = { { 255, 255, 255 }, { 200, 100, 50 } };
+    for (int f = 0; f < 2; ++f)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        PGI_NEAR(faceColors->GetComponent(f, c), expect[f][c], 0);
+      }
+    }
+  }
   double p[3];
   mesh->GetPoint(4, p);
   PGI_NEAR(p[2], 1.0, 0.0);

@@ -135,6 +135,10 @@ int TestEnvironmentMap(int, char*[])
     std::uniform_real_distribution<double> u(0.0, 1.0);
     double estimate = 0.0;
     const int samples = 200000;
+    // Where the samples go: above the horizon, and in map-space y > 0 (the
+    // columns of phi in [0, pi), seen through the rotation).
+    const double cosR = std::cos(map.GetRotation()), sinR = std::sin(map.GetRotation());
+    int upCount = 0, halfCount = 0;
     for (int s = 0; s < samples; ++s)
     {
       double d[3];
@@ -144,6 +148,8 @@ int TestEnvironmentMap(int, char*[])
       {
         PGI_NEAR(map.Pdf(d), pdf, 1e-9 * pdf);
       }
+      upCount += (d[2] > 0.0) ? 1 : 0;
+      halfCount += (-sinR * d[0] + cosR * d[1] > 0.0) ? 1 : 0;
       estimate += (0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]) / pdf / samples;
     }
     double mean[3];
@@ -162,6 +168,36 @@ int TestEnvironmentMap(int, char*[])
     }
     std::printf("pdf integral (Monte Carlo): %.4f\n", integral);
     PGI_NEAR(integral, 1.0, 0.05);
+    // Pdf is constant per texel: its integral is a texel sum, exact up to
+    // rounding; the same sum over z > 0 and map y > 0 gives the mass the
+    // samples must hit there.
+    const int w = map.GetWidth(), h = map.GetHeight();
+    double sum = 0.0, upMass = 0.0, halfMass = 0.0;
+    for (int j = 0; j < h; ++j)
+    {
+      const double t0 = sh::Pi * j / h, t1 = sh::Pi * (j + 1) / h;
+      const double solid = 2 * sh::Pi / w * (std::cos(t0) - std::cos(t1));
+      const double theta = 0.5 * (t0 + t1);
+      for (int i = 0; i < w; ++i)
+      {
+        const double phi = 2 * sh::Pi * (i + 0.5) / w + map.GetRotation(); // world space
+        const double d[3] = { std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+          std::cos(theta) };
+        const double mass = map.Pdf(d) * solid;
+        sum += mass;
+        upMass += 2 * j < h ? mass : 0.0;
+        halfMass += 2 * i < w ? mass : 0.0;
+      }
+    }
+    std::printf("pdf integral (texel sum): %.12f\n", sum);
+    PGI_NEAR(sum, 1.0, 1e-9);
+    // Binomial counts within 4 sigma. Measured (gdb probe): z > 0 0.9181 vs
+    // mass 0.9177 (0.7 sigma), map y > 0 0.2157 vs 0.2169 (-1.3 sigma).
+    const double upFraction = double(upCount) / samples, halfFraction = double(halfCount) / samples;
+    std::printf("sampled fraction z > 0: %.5f (pdf mass %.5f), map y > 0: %.5f (pdf mass %.5f)\n",
+      upFraction, upMass, halfFraction, halfMass);
+    PGI_NEAR(upFraction, upMass, 4 * std::sqrt(upMass * (1 - upMass) / samples));
+    PGI_NEAR(halfFraction, halfMass, 4 * std::sqrt(halfMass * (1 - halfMass) / samples));
   }
 
   // Bad data is refused with a message.

@@ -185,7 +185,7 @@ int TestProxiesInputs(int, char*[])
     std::printf("cube of quads, 8 spheres: E %.3f\n", r.Filter->GetOutsideVolumeRatio(0));
   }
   {
-    // Triangle strips, and the same surface as triangles: same spheres.
+    // Triangle strips, and the same surface as triangles: equivalent spheres.
     vtkSmartPointer<vtkPolyData> sphere = Sphere(0.0);
     vtkNew<vtkStripper> strip;
     strip->SetInputData(sphere);
@@ -195,8 +195,18 @@ int TestProxiesInputs(int, char*[])
     vtkPolyData* fromStrips = a.Update(strip->GetOutput(), 6);
     PGI_CHECK(!a.Error() && Bounded(sphere, fromStrips));
     vtkPolyData* fromTriangles = b.Update(sphere, 6);
-    PGI_NEAR(a.Filter->GetOutsideVolumeRatio(0), b.Filter->GetOutsideVolumeRatio(0), 0.05);
-    (void)fromTriangles;
+    const double eStrips = a.Filter->GetOutsideVolumeRatio(0);
+    const double eTriangles = b.Filter->GetOutsideVolumeRatio(0);
+    std::printf("strips vs triangles, 6 spheres: E %.4f vs %.4f\n", eStrips, eTriangles);
+    PGI_CHECK(!b.Error() && Bounded(sphere, fromTriangles));
+    PGI_CHECK(fromStrips->GetNumberOfPoints() == 6 && fromTriangles->GetNumberOfPoints() == 6);
+    // Not bit-identical: vtkTriangleFilter reorders the triangles and the
+    // clustering follows element order. `proxygi proxies -n 6 --iterations
+    // 10` on a 24x24 UV sphere: E 0.0170 as strips and as triangles,
+    // 0.0164-0.0197 over 16 shuffled triangle orders (spread 0.0033).
+    PGI_NEAR(eStrips, eTriangles, 0.01);
+    PGI_BELOW(eStrips, 0.04);
+    PGI_BELOW(eTriangles, 0.04);
   }
   {
     // Open mesh: the cow with a hole cut out.

@@ -31,6 +31,7 @@
 #include "vtkTransform.h"
 #include "vtkTransformPolyDataFilter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -254,8 +255,18 @@ int TestProxiesMotion(int, char*[])
     deform->SetDeformedMeshData(bent);
     deform->Update();
     vtkPolyData* out = deform->GetOutput();
-    const double fraction = Field(out, "SurfaceOutsideFraction");
-    const double gap = Field(out, "SurfaceGapMaximum") / CylinderRadius;
+    // Measured here, not taken from the filter's own field data: a filter
+    // that moved the spheres wrongly but reported 0 would pass otherwise.
+    proxygi::CoverageMeasure moved;
+    PGI_CHECK(proxygi::MeasureSurfaceCoverage(bent, out, 4, moved, error));
+    PGI_CHECK(moved.Samples > 0);
+    const double fraction =
+      static_cast<double>(moved.Outside) / std::max<long long>(1, moved.Samples);
+    const double gap = moved.MaximumGap / CylinderRadius;
+    // Same samples (SurfaceSubdivisions 4): the report must agree.
+    PGI_NEAR(Field(out, "SurfaceOutsideFraction"), fraction, 1e-12);
+    PGI_NEAR(Field(out, "SurfaceGapMaximum") / CylinderRadius, gap, 1e-12);
+    PGI_NEAR(Field(out, "SurfaceGapMean"), moved.MeanGap, 1e-12);
     PGI_CHECK(proxygi::MeasureSurfaceCoverage(bent, cylinderTree->GetOutput(), 4, coverage, error));
     std::printf(" %4.0f  %6.2f%%  %9.4f  %10.5f  (%6.2f%%, %.3f)\n", degrees, 100.0 * fraction, gap,
       Field(out, "SurfaceGapMean") / CylinderRadius,
@@ -290,12 +301,17 @@ int TestProxiesMotion(int, char*[])
     vtkNew<vtkTransform> rigid;
     rigid->Translate(1, 2, 3);
     rigid->RotateWXYZ(120, 1, 1, 0);
-    deform->SetDeformedMeshData(Transformed(rest, rigid));
+    vtkSmartPointer<vtkPolyData> moved = Transformed(rest, rigid);
+    deform->SetDeformedMeshData(moved);
     deform->Update();
     std::printf("rigid motion as a deformation: outside %.3g, max gap %.3g\n",
       Field(deform->GetOutput(), "SurfaceOutsideFraction"),
       Field(deform->GetOutput(), "SurfaceGapMaximum"));
     PGI_BELOW(Field(deform->GetOutput(), "SurfaceGapMaximum"), 1e-9);
+    // Independently of the filter's report (measured: 0 outside, gap 0).
+    PGI_CHECK(proxygi::MeasureSurfaceCoverage(moved, deform->GetOutput(), 4, coverage, error));
+    PGI_CHECK(coverage.Samples > 0 && coverage.Outside == 0);
+    PGI_BELOW(coverage.MaximumGap, 1e-9);
   }
 
   // A sphere that holds no vertex (deep inside) follows the triangle nearest

@@ -143,6 +143,22 @@ int TestProxiesSphereMath(int, char*[])
       }
     }
     PGI_BELOW(worst, 1e-10);
+    // moved = R (rest - ma) + mb with ma, mb the two centroids, so the
+    // translation is mb - R ma = (1, 2, 3).
+    for (int k = 0; k < 3; ++k)
+    {
+      double restMean = 0.0, movedMean = 0.0;
+      for (int i = 0; i < 20; ++i)
+      {
+        restMean += rest[3 * i + k] / 20.0;
+        movedMean += moved[3 * i + k] / 20.0;
+      }
+      PGI_NEAR(ma[k], restMean, 1e-12);
+      PGI_NEAR(mb[k], movedMean, 1e-12);
+      // Exact up to rounding; 1e-9 allows 3 |ma| times the rotation's 1e-10.
+      PGI_NEAR(
+        mb[k] - (fitR[k][0] * ma[0] + fitR[k][1] * ma[1] + fitR[k][2] * ma[2]), k + 1.0, 1e-9);
+    }
     const double m[3][3] = { { 2, 0, 0 }, { 0, 3, 0 }, { 0, 0, 0.5 } };
     PGI_NEAR(LargestStretch(m), 3.0, 1e-12);
     PGI_NEAR(SmallestStretch(m), 0.5, 1e-12);

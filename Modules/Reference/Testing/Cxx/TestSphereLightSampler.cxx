@@ -181,6 +181,11 @@ int TestSphereLightSampler(int, char*[])
       worstRadius = std::max(worstRadius, std::fabs(len - 1.0));
       worstNormal = std::min(worstNormal, nn[0] * d[0] + nn[1] * d[1] + nn[2] * d[2]);
       PGI_NEAR(o[0] * d[1] - o[1] * d[0], 0.0, 1e-4); // along its direction
+      // All of o x d, and o . d > 0: along w_j, not against it (the sample
+      // is a hit of the ray centre + t w_j, so only float rounding remains).
+      PGI_NEAR(o[1] * d[2] - o[2] * d[1], 0.0, 1e-4);
+      PGI_NEAR(o[2] * d[0] - o[0] * d[2], 0.0, 1e-4);
+      PGI_NEAR(o[0] * d[0] + o[1] * d[1] + o[2] * d[2], len, 1e-4);
     }
     std::printf("rule 1: samples within %.4f of the unit surface, normals within %.1f degrees\n",
       worstRadius, std::acos(worstNormal) * 180 / Pi);
@@ -212,6 +217,7 @@ int TestSphereLightSampler(int, char*[])
       rules->GetTuple1(1), rules->GetTuple1(2), rules->GetTuple1(3));
     PGI_CHECK(rules->GetTuple1(0) > 0 && rules->GetTuple1(2) > 0);
     double worst = 0;
+    int samples = 0;
     for (int j = 0; j < 92; ++j)
     {
       double q[3], nn[3];
@@ -222,10 +228,19 @@ int TestSphereLightSampler(int, char*[])
       }
       if (nn[0] != 0 || nn[1] != 0 || nn[2] != 0)
       {
+        ++samples;
         worst = std::max(worst, std::fabs(std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) - 1));
       }
     }
     PGI_BELOW(worst, 0.005);
+    // Skipping empty directions must not let "no samples" pass: rules 1 and
+    // 3 make the samples (measured 10 + 10), rules 2 and "none" do not.
+    PGI_CHECK(samples > 0);
+    PGI_CHECK(samples == rules->GetTuple1(0) + rules->GetTuple1(2));
+    PGI_CHECK(out->GetPointData()->GetArray("SampleCount")->GetTuple1(0) == samples);
+    const double directions =
+      rules->GetTuple1(0) + rules->GetTuple1(1) + rules->GetTuple1(2) + rules->GetTuple1(3);
+    PGI_CHECK(directions == 92); // every direction of every sphere takes one rule
     PGI_NEAR(sh->GetComponent(0, 0), 0.7 * std::sqrt(4 * Pi), 1e-4);
     PGI_NEAR(sh->GetComponent(0, 16 + 0), 0.6 * std::sqrt(4 * Pi), 1e-4);
     PGI_NEAR(sh->GetComponent(0, 5), 0.0, 1e-4);
@@ -247,7 +262,7 @@ int TestSphereLightSampler(int, char*[])
     std::printf("two intersecting proxies: rule 1 %g, rule 2 %g, rule 3 %g, none %g\n",
       rules->GetTuple1(0), rules->GetTuple1(1), rules->GetTuple1(2), rules->GetTuple1(3));
     PGI_CHECK(rules->GetTuple1(1) > 0 && rules->GetTuple1(0) > 0);
-    int wrongSegment = 0;
+    int wrongSegment = 0, samples = 0;
     for (int s = 0; s < 2; ++s)
     {
       for (int j = 0; j < 92; ++j)
@@ -262,12 +277,22 @@ int TestSphereLightSampler(int, char*[])
         {
           continue;
         }
+        ++samples;
         const double mine = std::fabs(p[2] - spheres[4 * s + 2]);
         const double other = std::fabs(p[2] - spheres[4 * (1 - s) + 2]);
         wrongSegment += mine > other + 1e-6 ? 1 : 0; // equal radii: nearer centre
       }
     }
     PGI_CHECK(wrongSegment == 0);
+    // The segment test above skips empty directions: count what it saw.
+    // Samples come from rules 1 and 3 only (measured 164 + 0 of 2 x 92).
+    PGI_CHECK(samples > 0);
+    PGI_CHECK(samples == rules->GetTuple1(0) + rules->GetTuple1(2));
+    vtkDataArray* count = out->GetPointData()->GetArray("SampleCount");
+    PGI_CHECK(count && count->GetTuple1(0) + count->GetTuple1(1) == samples);
+    const double directions =
+      rules->GetTuple1(0) + rules->GetTuple1(1) + rules->GetTuple1(2) + rules->GetTuple1(3);
+    PGI_CHECK(directions == 2 * 92); // every direction of every sphere takes one rule
   }
 
   // Bad input: proxies without radius.

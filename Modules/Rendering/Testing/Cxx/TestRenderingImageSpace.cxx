@@ -278,6 +278,8 @@ int TestRenderingImageSpace(int argc, char* argv[])
   }
   // Measured: 1/2 0.08%, 1/4 0.17%, 1/8 0.37% bilateral; 0.9%, 1.2%, 1.6% bilinear.
   PGI_BELOW(errors[1][1], 0.005);
+  PGI_BELOW(errors[2][1], 0.0035); // measured 0.173% (llvmpipe), 2x margin
+  PGI_BELOW(errors[3][1], 0.0075); // measured 0.370%, 2x margin
 
   // Smooth clamping: a small sphere of influence (eta 2.5, its boundary
   // crosses the plane 2 units from the ball's foot) must not leave a step:
@@ -320,6 +322,23 @@ int TestRenderingImageSpace(int argc, char* argv[])
   window->Render();
   vtkNew<vtkFloatArray> visibility, mask;
   PGI_CHECK(pass->GetVisibilityBuffer(visibility, mask));
+  {
+    // The buffer the picture was shaded from: 1/2 of 256^2, order 4, finite.
+    int bufferSize[2] = { 0, 0 };
+    pass->GetReceiverBufferSize(bufferSize);
+    PGI_CHECK(bufferSize[0] == Size / 2 && bufferSize[1] == Size / 2);
+    PGI_CHECK(visibility->GetNumberOfTuples() == (Size / 2) * (Size / 2) &&
+      visibility->GetNumberOfComponents() == 16 &&
+      mask->GetNumberOfTuples() == (Size / 2) * (Size / 2));
+    PGI_CHECK(pgitest::NonFiniteValues(visibility.Get()) == 0);
+    int covered = 0;
+    for (vtkIdType t = 0; t < mask->GetNumberOfTuples(); ++t)
+    {
+      covered += mask->GetValue(t) > 0.5f ? 1 : 0;
+    }
+    // Same view and meshes as the 300-proxy run below (12463 receivers there).
+    PGI_CHECK(covered > 8000);
+  }
   const int image = vtkRegressionTestImage(window);
 
   // Hundreds of overlapping proxies around the ball: no NaN, darker ground.
@@ -391,6 +410,9 @@ int TestRenderingImageSpace(int argc, char* argv[])
                 "test sky %.2f\n",
       etaDelta, etaWhite, etaSky);
     PGI_CHECK(etaWhite < etaDelta && etaSky < etaDelta && etaWhite > 1.0);
+    // CPU-side SH arithmetic, not the GPU: measured 28.03 and 23.76 (+-1%).
+    PGI_NEAR(etaDelta, 28.03, 0.3);
+    PGI_NEAR(etaSky, 23.76, 0.25);
     // A uniform sky loses about alpha^2 of its light to a small blocker
     // overhead (order-4 truncation adds a little): eta about 16.
     PGI_NEAR(etaWhite, 16.0, 1.0);

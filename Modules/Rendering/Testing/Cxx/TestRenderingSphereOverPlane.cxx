@@ -27,6 +27,7 @@
 #include "vtkSphereSource.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -96,28 +97,43 @@ int TestRenderingSphereOverPlane(int argc, char* argv[])
   vtkNew<vtkFloatArray> radiance;
   PGI_CHECK(planeMapper->GetPerVertexResults(radiance));
   vtkPolyData* planeData = plane->GetOutput();
-  double sq = 0.0, ref = 0.0, worst = 0.0;
-  for (vtkIdType i = 0; i < planeData->GetNumberOfPoints(); ++i)
+  // A failed read-back leaves an empty array; std::max below drops NaN.
+  const bool planeRead = radiance->GetNumberOfTuples() == planeData->GetNumberOfPoints() &&
+    radiance->GetNumberOfComponents() == 3;
+  PGI_CHECK(planeRead && planeData->GetNumberOfPoints() == 65 * 65);
+  PGI_CHECK(pgitest::NonFiniteValues(radiance.Get()) == 0);
+  // White sky, grey albedo: every channel has the same closed form.
+  for (int c = 0; planeRead && c < 3; ++c)
   {
-    double x[3];
-    planeData->GetPoint(i, x);
-    const double d2 = x[0] * x[0] + x[1] * x[1] + 1.5 * 1.5;
-    const double exact = 0.8 * (1.0 - 1.0 / d2 * 1.5 / std::sqrt(d2));
-    const double e = radiance->GetComponent(i, 0) - exact;
-    sq += e * e;
-    ref += exact * exact;
-    worst = std::max(worst, std::fabs(e));
+    double sq = 0.0, ref = 0.0, worst = 0.0;
+    for (vtkIdType i = 0; i < planeData->GetNumberOfPoints(); ++i)
+    {
+      double x[3];
+      planeData->GetPoint(i, x);
+      const double d2 = x[0] * x[0] + x[1] * x[1] + 1.5 * 1.5;
+      const double exact = 0.8 * (1.0 - 1.0 / d2 * 1.5 / std::sqrt(d2));
+      const double e = radiance->GetComponent(i, c) - exact;
+      sq += e * e;
+      ref += exact * exact;
+      worst = std::max(worst, std::fabs(e));
+    }
+    std::printf("GPU soft shadow vs closed form, channel %d: relative RMSE %.3f%%, "
+                "max error %.4f\n",
+      c, 100 * std::sqrt(sq / ref), worst);
+    PGI_BELOW(std::sqrt(sq / ref), 0.006); // the CPU filter's bound on this scene
+    PGI_BELOW(worst, 0.012);               // measured 0.0062 (channel 0, llvmpipe), 2x margin
   }
-  std::printf("GPU soft shadow vs closed form: relative RMSE %.3f%%, max error %.4f\n",
-    100 * std::sqrt(sq / ref), worst);
-  PGI_BELOW(std::sqrt(sq / ref), 0.006); // the CPU filter's bound on this scene
 
   // The ball's bottom faces the ground: far darker than its top.
   vtkNew<vtkFloatArray> ballRadiance;
   PGI_CHECK(ballMapper->GetPerVertexResults(ballRadiance));
   double top = 0.0, bottom = 1.0;
   vtkPolyData* ballData = ball->GetOutput();
-  for (vtkIdType i = 0; i < ballData->GetNumberOfPoints(); ++i)
+  const bool ballRead = ballRadiance->GetNumberOfTuples() == ballData->GetNumberOfPoints() &&
+    ballRadiance->GetNumberOfComponents() == 3;
+  PGI_CHECK(ballRead && ballData->GetNumberOfPoints() > 0);
+  PGI_CHECK(pgitest::NonFiniteValues(ballRadiance.Get()) == 0);
+  for (vtkIdType i = 0; ballRead && i < ballData->GetNumberOfPoints(); ++i)
   {
     double x[3];
     ballData->GetPoint(i, x);

@@ -109,6 +109,9 @@ int TestSoftShadows(int, char*[])
     std::printf("SH vs Embree reference (2048 samples, its noise %.3f%%): relative RMSE %.3f%%\n",
       100 * noise, 100 * std::sqrt(sq / ref));
     PGI_BELOW(std::sqrt(sq / ref), 0.006 + 2 * noise);
+    // A noisy reference would widen the bound above (measured 0.891%).
+    PGI_CHECK(noise > 0.0);
+    PGI_BELOW(noise, 0.015);
   }
 
   // The two shading paths agree, and both match the double-precision formula.
@@ -209,6 +212,8 @@ int TestSoftShadows(int, char*[])
     PGI_CHECK(none);
     PGI_NEAR(
       gi->GetOutput()->GetPointData()->GetArray("DirectShadowed")->GetRange(0)[0], 0.8, 1e-5);
+    PGI_NEAR(
+      gi->GetOutput()->GetPointData()->GetArray("DirectShadowed")->GetRange(0)[1], 0.8, 1e-5);
   }
   return pgitest::Result();
 }
