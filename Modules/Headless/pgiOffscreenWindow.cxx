@@ -6,11 +6,11 @@
 #include "vtkRenderingOpenGLConfigure.h"
 #include "vtk_glew.h"
 
-#ifdef PROXYGI_RENDERING_HAS_EGL
+#ifdef PROXYGI_HEADLESS_HAS_EGL
 #include "vtkPGIEGLRenderWindow.h"
 #endif
 #if defined(VTK_OPENGL_HAS_OSMESA) && __has_include("vtkOSOpenGLRenderWindow.h")
-#define PROXYGI_RENDERING_HAS_OSMESA 1
+#define PROXYGI_HEADLESS_HAS_OSMESA 1
 #include "vtkOSOpenGLRenderWindow.h"
 #endif
 
@@ -71,13 +71,13 @@ vtkSmartPointer<vtkRenderWindow> Configure(vtkSmartPointer<vtkRenderWindow> wind
 std::string AvailableOffscreenPaths()
 {
   std::string paths;
-#ifdef PROXYGI_RENDERING_HAS_EGL
+#ifdef PROXYGI_HEADLESS_HAS_EGL
   paths += "EGL ";
 #endif
 #ifdef VTK_USE_X
   paths += "GLX ";
 #endif
-#ifdef PROXYGI_RENDERING_HAS_OSMESA
+#ifdef PROXYGI_HEADLESS_HAS_OSMESA
   paths += "OSMesa ";
 #endif
   if (!paths.empty())
@@ -94,7 +94,7 @@ std::string DescribeRenderWindowContext(vtkRenderWindow* window)
   {
     return "not an OpenGL window";
   }
-#ifdef PROXYGI_RENDERING_HAS_EGL
+#ifdef PROXYGI_HEADLESS_HAS_EGL
   if (auto* egl = vtkPGIEGLRenderWindow::SafeDownCast(window))
   {
     if (!egl->CreateContext())
@@ -154,7 +154,7 @@ vtkSmartPointer<vtkRenderWindow> NewOffscreenRenderWindow(std::string* descripti
     notes << "GLX: the X server on DISPLAY does not answer; ";
   }
 
-#ifdef PROXYGI_RENDERING_HAS_EGL
+#ifdef PROXYGI_HEADLESS_HAS_EGL
   if (forced.empty() || forced == "egl")
   {
     vtkSmartPointer<vtkPGIEGLRenderWindow> egl = vtkSmartPointer<vtkPGIEGLRenderWindow>::New();
@@ -173,7 +173,7 @@ vtkSmartPointer<vtkRenderWindow> NewOffscreenRenderWindow(std::string* descripti
   }
 #endif
 
-#ifdef PROXYGI_RENDERING_HAS_OSMESA
+#ifdef PROXYGI_HEADLESS_HAS_OSMESA
   if (forced.empty() || forced == "osmesa")
   {
     vtkSmartPointer<vtkRenderWindow> osmesa = vtkSmartPointer<vtkOSOpenGLRenderWindow>::New();

@@ -7,7 +7,7 @@
  * GLEW_ERROR_NO_GLX_DISPLAY, so VTK stops its context set-up half way. This
  * library defines glewInit, forwards to the real one and maps that one error
  * to GLEW_OK. It must come before VTK's libraries in the program's lookup
- * order: link it first with -Wl,--no-as-needed (ProxyGI::Rendering does so
+ * order: link it first with -Wl,--no-as-needed (ProxyGI::Headless does so
  * through its interface link options). With GLX contexts it changes nothing.
  */
 #define _GNU_SOURCE

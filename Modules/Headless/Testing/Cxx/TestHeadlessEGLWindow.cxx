@@ -16,7 +16,7 @@
 
 #include <cstdio>
 
-int TestRenderingEGLWindow(int, char*[])
+int TestHeadlessEGLWindow(int, char*[])
 {
   PGI_CHECK(vtkPGIEGLRenderWindow::IsGlewShimActive());
   vtkNew<vtkPGIEGLRenderWindow> window;

@@ -13,7 +13,7 @@
  * OpenGL state from that context.
  *
  * Programs using it must link the ProxyGIGlewShim library before VTK's
- * (ProxyGI::Rendering adds it to its users' link lines): the system GLEW is
+ * (ProxyGI::Headless adds it to its users' link lines): the system GLEW is
  * the GLX flavour and fails on EGL contexts without it. CreateContext()
  * reports a missing shim as an error instead of rendering half-initialised.
  *
@@ -25,13 +25,13 @@
 #ifndef vtkPGIEGLRenderWindow_h
 #define vtkPGIEGLRenderWindow_h
 
-#include "ProxyGIRenderingModule.h"
+#include "ProxyGIHeadlessModule.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 
 #include <memory>
 #include <string>
 
-class PROXYGIRENDERING_EXPORT vtkPGIEGLRenderWindow : public vtkGenericOpenGLRenderWindow
+class PROXYGIHEADLESS_EXPORT vtkPGIEGLRenderWindow : public vtkGenericOpenGLRenderWindow
 {
 public:
   static vtkPGIEGLRenderWindow* New();

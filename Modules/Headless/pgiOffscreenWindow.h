@@ -18,7 +18,7 @@
 #ifndef pgiOffscreenWindow_h
 #define pgiOffscreenWindow_h
 
-#include "ProxyGIRenderingModule.h"
+#include "ProxyGIHeadlessModule.h"
 #include "vtkSmartPointer.h"
 
 #include <string>
@@ -34,14 +34,14 @@ namespace proxygi
  * e.g. "EGL surfaceless (Mesa): llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5
  * (Core Profile) Mesa 22.3.6", or why none worked.
  */
-PROXYGIRENDERING_EXPORT vtkSmartPointer<vtkRenderWindow> NewOffscreenRenderWindow(
+PROXYGIHEADLESS_EXPORT vtkSmartPointer<vtkRenderWindow> NewOffscreenRenderWindow(
   std::string* description = nullptr);
 
 /// The GL renderer and version of a window (initialises its context if needed).
-PROXYGIRENDERING_EXPORT std::string DescribeRenderWindowContext(vtkRenderWindow* window);
+PROXYGIHEADLESS_EXPORT std::string DescribeRenderWindowContext(vtkRenderWindow* window);
 
 /// Which paths this build has: "EGL GLX", "GLX OSMesa", ...
-PROXYGIRENDERING_EXPORT std::string AvailableOffscreenPaths();
+PROXYGIHEADLESS_EXPORT std::string AvailableOffscreenPaths();
 
 } // namespace proxygi
 

@@ -18,7 +18,7 @@
 #include <cstring>
 #include <string>
 
-int TestRenderingOffscreenWindow(int, char*[])
+int TestHeadlessOffscreenWindow(int, char*[])
 {
   std::printf("offscreen paths in this build: %s\n", proxygi::AvailableOffscreenPaths().c_str());
   std::string description;
