@@ -74,6 +74,9 @@ missing_packages() {
   done
 }
 
+# The meshes and maps the tests read (in this tree's ignored Data/).
+"$here/Utilities/setup.sh" --data
+
 mount_system
 if [ ! -f "$root/.proxygi-ready" ]; then
   make_root
