@@ -47,10 +47,10 @@
 #ifndef vtkPGISphereLightSampler_h
 #define vtkPGISphereLightSampler_h
 
-#include "ProxyGIReferenceModule.h"
+#include "ProxyGIProxiesModule.h"
 #include "vtkPolyDataAlgorithm.h"
 
-class PROXYGIREFERENCE_EXPORT vtkPGISphereLightSampler : public vtkPolyDataAlgorithm
+class PROXYGIPROXIES_EXPORT vtkPGISphereLightSampler : public vtkPolyDataAlgorithm
 {
 public:
   static vtkPGISphereLightSampler* New();
