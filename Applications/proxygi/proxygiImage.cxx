@@ -15,35 +15,27 @@ namespace proxygi
 namespace cli
 {
 
-unsigned char ToSRGB8(double v)
+double AutoExposure(std::vector<double>& luminance)
 {
-  v = v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
-  const double s = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-  return static_cast<unsigned char>(std::lround(255.0 * s));
-}
-
-double FromSRGB8(unsigned char v)
-{
-  const double s = v / 255.0;
-  return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+  if (luminance.empty())
+  {
+    return 1.0;
+  }
+  const std::size_t k = std::min(luminance.size() - 1, luminance.size() * 95 / 100);
+  std::nth_element(luminance.begin(), luminance.begin() + k, luminance.end());
+  return luminance[k] > 0.0 ? 0.8 / luminance[k] : 1.0;
 }
 
 double AutoExposure(vtkImageData* radiance)
 {
   vtkDataArray* rgb = radiance->GetPointData()->GetScalars();
-  std::vector<double> lum(rgb->GetNumberOfTuples());
+  std::vector<double> luminance(rgb->GetNumberOfTuples());
   for (vtkIdType i = 0; i < rgb->GetNumberOfTuples(); ++i)
   {
-    lum[i] = 0.2126 * rgb->GetComponent(i, 0) + 0.7152 * rgb->GetComponent(i, 1) +
-      0.0722 * rgb->GetComponent(i, 2);
+    luminance[i] =
+      Luminance(rgb->GetComponent(i, 0), rgb->GetComponent(i, 1), rgb->GetComponent(i, 2));
   }
-  if (lum.empty())
-  {
-    return 1.0;
-  }
-  const std::size_t k = std::min(lum.size() - 1, lum.size() * 99 / 100);
-  std::nth_element(lum.begin(), lum.begin() + k, lum.end());
-  return lum[k] > 0.0 ? 1.0 / lum[k] : 1.0;
+  return AutoExposure(luminance);
 }
 
 bool WriteTonemappedPNG(vtkImageData* radiance, double exposure, const std::string& path)

@@ -2,7 +2,10 @@
 #ifndef proxygiImage_h
 #define proxygiImage_h
 
+#include "pgiSRGB.h" // ToSRGB8, FromSRGB8, Luminance
+
 #include <string>
+#include <vector>
 
 class vtkImageData;
 
@@ -10,12 +13,11 @@ namespace proxygi
 {
 namespace cli
 {
-/// Linear radiance to an 8-bit sRGB value (clamped to [0, 1] first).
-unsigned char ToSRGB8(double v);
-/// Its inverse (linear value of an 8-bit sRGB level).
-double FromSRGB8(unsigned char v);
-
-/// Exposure that maps the 99th-percentile luminance of an RGB image to 1.
+/// The one automatic exposure rule of the pictures proxygi writes: the 95th
+/// percentile of the luminance to 0.8 (1 when that is not positive).
+/// `luminance` is reordered.
+double AutoExposure(std::vector<double>& luminance);
+/// The same for a float RGB radiance image (point scalars).
 double AutoExposure(vtkImageData* radiance);
 
 /// Writes a float RGB radiance image (point scalars) as an sRGB PNG.

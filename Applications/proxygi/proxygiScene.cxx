@@ -172,19 +172,17 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   double exposure = NumberOption(args, "--exposure", 0.0, ok);
   const auto automaticExposure = [&]()
   {
-    std::vector<double> lum;
+    std::vector<double> luminance;
     for (auto& s : shaded)
     {
       vtkDataArray* r = s->GetPointData()->GetArray("Radiance");
       for (vtkIdType i = 0; i < r->GetNumberOfTuples(); ++i)
       {
-        lum.push_back(0.2126 * r->GetComponent(i, 0) + 0.7152 * r->GetComponent(i, 1) +
-          0.0722 * r->GetComponent(i, 2));
+        luminance.push_back(
+          Luminance(r->GetComponent(i, 0), r->GetComponent(i, 1), r->GetComponent(i, 2)));
       }
     }
-    const std::size_t k = lum.size() * 95 / 100;
-    std::nth_element(lum.begin(), lum.begin() + k, lum.end());
-    return lum[k] > 0.0 ? 0.8 / lum[k] : 1.0;
+    return AutoExposure(luminance);
   };
   if (!(exposure > 0.0) && !gpu)
   {

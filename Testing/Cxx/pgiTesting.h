@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 namespace pgitest
 {
@@ -69,6 +70,26 @@ long NonFiniteValues(Array* array)
     }
   }
   return bad;
+}
+
+/// The tests' one relative RMSE: sqrt(sum (a - b)^2 / sum b^2) over
+/// component 0 of a's tuples (b may hold more: a receiver patch first), or
+/// of those with mask[i]. Arrays as for NonFiniteValues.
+template <class ArrayA, class ArrayB>
+double RelativeRMSE(ArrayA* a, ArrayB* b, const std::vector<char>* mask = nullptr)
+{
+  double sq = 0.0, ref = 0.0;
+  for (long i = 0; i < static_cast<long>(a->GetNumberOfTuples()); ++i)
+  {
+    if (mask && !(*mask)[i])
+    {
+      continue;
+    }
+    const double d = a->GetComponent(i, 0) - b->GetComponent(i, 0);
+    sq += d * d;
+    ref += b->GetComponent(i, 0) * b->GetComponent(i, 0);
+  }
+  return std::sqrt(sq / ref);
 }
 } // namespace pgitest
 

@@ -7,6 +7,7 @@
 // the ground under the ball; 1/4 bilateral stays close to 1/1.
 #include "pgiOffscreenWindow.h"
 #include "pgiRenderingTestScenes.h"
+#include "pgiSRGB.h"
 #include "pgiTesting.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGIImageSpaceGIPass.h"
@@ -45,18 +46,8 @@ std::vector<unsigned char> Grab(vtkRenderWindow* window)
   return std::vector<unsigned char>(p, p + 3 * Size * Size);
 }
 
-double Linear(unsigned char v)
-{
-  const double c = v / 255.0;
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
-unsigned char Encode(double c)
-{
-  c = std::min(1.0, std::max(0.0, c));
-  const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-  return static_cast<unsigned char>(std::lround(255.0 * s));
-}
+using proxygi::FromSRGB8;
+using proxygi::ToSRGB8;
 
 // Relative RMSE (linear) and largest difference (levels) over pixels where
 // `reference` is not the background.
@@ -76,9 +67,9 @@ void Compare(const std::vector<unsigned char>& a, const std::vector<unsigned cha
     int level = 0;
     for (int c = 0; c < 3; ++c)
     {
-      const double e = Linear(a[3 * i + c]) - Linear(r[c]);
+      const double e = FromSRGB8(a[3 * i + c]) - FromSRGB8(r[c]);
       sq += e * e;
-      ref += Linear(r[c]) * Linear(r[c]);
+      ref += FromSRGB8(r[c]) * FromSRGB8(r[c]);
       level = std::max(level, std::abs(int(a[3 * i + c]) - int(r[c])));
     }
     worst = std::max(worst, level);
@@ -152,7 +143,7 @@ int TestRenderingImageSpaceIndirect(int, char*[])
     for (int c = 0; c < 3; ++c)
     {
       colours->SetValue(
-        3 * i + c, Encode(Exposure * (direct->GetComponent(i, c) + bounce->GetComponent(i, c))));
+        3 * i + c, ToSRGB8(Exposure * (direct->GetComponent(i, c) + bounce->GetComponent(i, c))));
     }
   }
   vtkNew<vtkPolyData> coloured;
@@ -185,7 +176,7 @@ int TestRenderingImageSpaceIndirect(int, char*[])
   {
     for (int c = 0; c < 3; ++c)
     {
-      colours->SetValue(3 * i + c, Encode(Exposure * direct->GetComponent(i, c)));
+      colours->SetValue(3 * i + c, ToSRGB8(Exposure * direct->GetComponent(i, c)));
     }
   }
   colours->Modified();
@@ -255,14 +246,14 @@ int TestRenderingImageSpaceIndirect(int, char*[])
     }
     for (int c = 0; c < 3; ++c)
     {
-      gain += Linear(full[3 * i + c]) - Linear(shadowsOnly[3 * i + c]);
+      gain += FromSRGB8(full[3 * i + c]) - FromSRGB8(shadowsOnly[3 * i + c]);
     }
     ++pixels;
     const int x = i % Size, y = i / Size;
     if (y >= 40 && y < 96 && x >= 90 && x < 166)
     {
-      red += Linear(full[3 * i]) - Linear(shadowsOnly[3 * i]);
-      blue += Linear(full[3 * i + 2]) - Linear(shadowsOnly[3 * i + 2]);
+      red += FromSRGB8(full[3 * i]) - FromSRGB8(shadowsOnly[3 * i]);
+      blue += FromSRGB8(full[3 * i + 2]) - FromSRGB8(shadowsOnly[3 * i + 2]);
     }
   }
   std::printf("indirect adds %.4f (linear, mean per pixel and channel); on the ground red "

@@ -7,6 +7,7 @@
 // (skipped without it).
 #include "pgiBunnyScene.h"
 #include "pgiOffscreenWindow.h"
+#include "pgiSRGB.h"
 #include "pgiTesting.h"
 #include "vtkPGIImageSpaceGIPass.h"
 #include "vtkPGILighting.h"
@@ -30,14 +31,7 @@
 #include <cstdio>
 #include <string>
 
-namespace
-{
-double Linear(unsigned char v)
-{
-  const double s = v / 255.0;
-  return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
-}
-}
+using proxygi::FromSRGB8;
 
 int TestRenderingImageSpaceScene(int argc, char* argv[])
 {
@@ -115,7 +109,7 @@ int TestRenderingImageSpaceScene(int argc, char* argv[])
       static_cast<int>(d[0]), static_cast<int>(d[1]), 0);
     for (int c = 0; c < 3; ++c)
     {
-      rgb[c] = Linear(pixel[c]);
+      rgb[c] = FromSRGB8(pixel[c]);
     }
     delete[] pixel;
   };

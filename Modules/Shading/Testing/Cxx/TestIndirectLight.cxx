@@ -22,16 +22,7 @@
 namespace
 {
 // Over a's tuples (the receiver patch comes first in b).
-double RelativeRMSE(vtkDataArray* a, vtkDataArray* b)
-{
-  double sq = 0, ref = 0;
-  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
-  {
-    sq += std::pow(a->GetComponent(i, 0) - b->GetComponent(i, 0), 2);
-    ref += std::pow(b->GetComponent(i, 0), 2);
-  }
-  return std::sqrt(sq / ref);
-}
+using pgitest::RelativeRMSE;
 } // namespace
 
 int TestIndirectLight(int, char*[])

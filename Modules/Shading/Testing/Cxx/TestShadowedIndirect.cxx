@@ -101,21 +101,7 @@ vtkSmartPointer<vtkPolyData> Spheres(const std::vector<double>& xyzr,
   return proxies;
 }
 
-// Relative RMSE of a against b over a's tuples, or those with mask[i].
-double RelativeRMSE(vtkDataArray* a, vtkDataArray* b, const std::vector<char>* mask = nullptr)
-{
-  double sq = 0, ref = 0;
-  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
-  {
-    if (mask && !(*mask)[i])
-    {
-      continue;
-    }
-    sq += std::pow(a->GetComponent(i, 0) - b->GetComponent(i, 0), 2);
-    ref += std::pow(b->GetComponent(i, 0), 2);
-  }
-  return std::sqrt(sq / ref);
-}
+using pgitest::RelativeRMSE;
 
 // int_disk H dw for a disk of angular radius asin(s) straight above, with H
 // the order-4 (bands 0-2; band 3 is 0) clamped cosine / pi: what SH order 4
