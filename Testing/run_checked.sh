@@ -38,11 +38,13 @@ if [ "$want_exit" = refused ]; then
 elif [ "$code" -ne "$want_exit" ]; then
   problems+=("exit code $code, expected $want_exit")
 fi
+# grep reads the files itself: in a pipe, grep -q exiting early would fail
+# the pipe under pipefail and turn a match into a miss.
 for re in "${pass[@]}"; do
-  cat "$out" "$err" | grep -Eq -- "$re" || problems+=("no line matches '$re'")
+  grep -Eqh -- "$re" "$out" "$err" || problems+=("no line matches '$re'")
 done
 for re in "${fail[@]}"; do
-  cat "$out" "$err" | grep -Eq -- "$re" && problems+=("a line matches '$re'")
+  grep -Eqh -- "$re" "$out" "$err" && problems+=("a line matches '$re'")
 done
 if [ -n "$last" ]; then
   final="$(grep -v '^[[:space:]]*$' "$out" | tail -n 1)"

@@ -36,7 +36,7 @@ case "$mode" in
     for want in libembree3 libopenexr 'libstdc\+\+6' "paraview|libvtk9"; do
       grep -Eq "$want" <<<"$depends" || fail "proxygi does not depend on $want"
     done
-    dpkg-deb -f "$dev" Depends | grep -q "proxygi (= " || fail "proxygi-dev does not depend on proxygi"
+    grep -q "proxygi (= " <<<"$(dpkg-deb -f "$dev" Depends)" || fail "proxygi-dev does not depend on proxygi"
     # The paths alone (a link's line goes on with "-> target").
     runtime_files="$(dpkg-deb -c "$runtime" | awk '{print $6}')"
     dev_files="$(dpkg-deb -c "$dev" | awk '{print $6}')"
@@ -82,7 +82,9 @@ cmake -S "$source/Examples" -B "$work/examples" "${generator[@]}" \
 
 # The examples built against the installed tree run from there.
 bin="$work/consumer/examples"
-ldd "$bin/SoftShadowOfSphere" | grep -q "$prefix/lib/libProxyGISphericalHarmonics" \
+# (Captured first: grep -q closing the pipe early would fail it under pipefail.)
+loaded="$(ldd "$bin/SoftShadowOfSphere")"
+grep -q "$prefix/lib/libProxyGISphericalHarmonics" <<<"$loaded" \
   || fail "SoftShadowOfSphere does not load the installed library"
 "$bin/SoftShadowOfSphere"
 if [ -x "$bin/ExampleGIMapper" ]; then
