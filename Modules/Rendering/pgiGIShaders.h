@@ -24,6 +24,8 @@
  *   (light 1) of the light above the planes that LightAbovePlanes built |
  * | pgiProxyIndirectTerm(H), pgiResolveIndirect(Scaled) | IndirectExitRadiance (averaged) |
  * | pgiPlaneShadowScale | proxygi::PlaneShadowScale |
+ * | pgiAboveEveryPlane | proxygi::Blockers::AboveEveryPlane |
+ * | pgiLocalLights | proxygi::LocalLightsRadiance |
  * | pgiAnalyticLight, pgiAnalyticLightLookup | sh::AnalyticLightTables::Evaluate, Lookup |
  * | pgiSphericalLightRadiance (pgiGISphericalLights.glsl) | IndirectTables::SphericalLightRadiance
  * | | pgiShadowedIndirect (pgiGISphericalLights.glsl) | ShadowedIndirect::ExitRadiance |

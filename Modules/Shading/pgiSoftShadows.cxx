@@ -9,6 +9,20 @@
 namespace proxygi
 {
 
+bool Blockers::AboveEveryPlane(const float p[3]) const
+{
+  for (std::size_t k = 0; k < this->Planes(); ++k)
+  {
+    const float* o = &this->PlaneOrigin[3 * k];
+    const float* m = &this->PlaneNormal[3 * k];
+    if (!((p[0] - o[0]) * m[0] + (p[1] - o[1]) * m[1] + (p[2] - o[2]) * m[2] > 0.0f))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 void Blockers::AddSphere(float x, float y, float z, float r, const float* albedo)
 {
   this->X.push_back(x);

@@ -47,6 +47,9 @@ struct PROXYGISHADING_EXPORT Blockers
   void AddPlane(const float origin[3], const float normal[3], const float* albedo = nullptr);
   std::size_t Spheres() const { return this->X.size(); }
   std::size_t Planes() const { return this->PlaneOrigin.size() / 3; }
+  /// Whether p lies strictly above every plane: the receivers whose light
+  /// carries the planes (LightAbovePlanes). GLSL twin: pgiAboveEveryPlane.
+  bool AboveEveryPlane(const float p[3]) const;
 };
 
 struct PROXYGISHADING_EXPORT SoftShadowSettings

@@ -61,6 +61,44 @@ void SphericalLights::Finish()
   }
 }
 
+void LocalLightsRadiance(const LocalEmitters& lights, const sh::AnalyticLightTables& tables,
+  const double p[3], const float n[3], const float* g, float lit[3])
+{
+  const int n2 = tables.GetOrder() * tables.GetOrder();
+  float open[sh::MaxCoefficients];
+  if (!g)
+  {
+    sh::SetConstant(tables.GetOrder(), 1.0f, open);
+    g = open;
+  }
+  const double theta1 = sh::AnalyticLightTables::MaxTheta / (tables.GetThetaResolution() - 1);
+  lit[0] = lit[1] = lit[2] = 0.0f;
+  for (std::size_t k = 0; k < lights.Count(); ++k)
+  {
+    const bool point = lights.Point[k] != 0;
+    const double radius = lights.R[k];
+    double dir[3] = { lights.X[k] - p[0], lights.Y[k] - p[1], lights.Z[k] - p[2] };
+    const double dist = vtkMath::Normalize(dir);
+    if (!(dist > radius))
+    {
+      continue; // inside an emitter
+    }
+    const double theta = point ? 0.0 : std::asin(radius / dist);
+    const double thetaEval = std::max(theta, theta1);
+    const double s1 = std::sin(thetaEval);
+    const double scale =
+      point ? 1.0 / (vtkMath::Pi() * dist * dist * s1 * s1) : std::pow(std::sin(theta) / s1, 2);
+    const float df[3] = { float(dir[0]), float(dir[1]), float(dir[2]) };
+    float lh[sh::MaxCoefficients];
+    tables.Evaluate(n, df, static_cast<float>(thetaEval), lh);
+    const float weight = std::max(0.0f, sh::Dot(n2, lh, g));
+    for (int c = 0; c < 3; ++c)
+    {
+      lit[c] += static_cast<float>(scale * lights.Radiance[3 * k + c]) * weight;
+    }
+  }
+}
+
 void LocalEmitters::Add(const double c[3], double r, const double rgb[3], bool point)
 {
   this->X.push_back(float(c[0]));

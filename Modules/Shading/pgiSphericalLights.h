@@ -46,6 +46,10 @@ class vtkPolyData;
 namespace proxygi
 {
 class EnvironmentShading;
+namespace sh
+{
+class AnalyticLightTables;
+}
 
 enum class SphericalLightBlocking
 {
@@ -81,6 +85,18 @@ struct PROXYGISHADING_EXPORT LocalEmitters
   void Add(const double c[3], double r, const double rgb[3], bool point);
   std::size_t Count() const { return this->X.size(); }
 };
+
+/**
+ * The local lights' direct exit radiance at a white receiver at p with
+ * normal n, shadowed by the visibility g (nullptr: unshadowed), at the
+ * order of `tables`: vtkPGIGlobalIllumination's LocalLights array before
+ * the albedo. GLSL twin: pgiLocalLights. Below the table's first node L_H
+ * grows as sin^2(theta) with a fixed shape, so it is evaluated there and
+ * scaled (point lights: theta -> 0, radiance I / (pi d^2 sin^2 theta)).
+ */
+PROXYGISHADING_EXPORT void LocalLightsRadiance(const LocalEmitters& lights,
+  const sh::AnalyticLightTables& tables, const double p[3], const float n[3], const float* g,
+  float lit[3]);
 
 /// Surface samples of the SLs (m per SL, in the directions Directions).
 struct PROXYGISHADING_EXPORT SphericalLightSamples

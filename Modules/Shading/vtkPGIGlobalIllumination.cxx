@@ -381,23 +381,16 @@ int vtkPGIGlobalIllumination::RequestData(
   const bool needVisibility =
     anyBlockers && (runShadows || runIndirect || runPlaneBounce || runLocal);
   // Local lights as spheres: point lights are tiny spheres of equal power.
-  struct LocalSphere
-  {
-    double Center[3], Radius, Radiance[3];
-    bool Point;
-  };
-  std::vector<LocalSphere> locals;
+  proxygi::LocalEmitters locals;
   if (runLocal)
   {
     for (const auto& l : lighting->GetSphereLights())
     {
-      locals.push_back({ { l.Center[0], l.Center[1], l.Center[2] }, l.Radius,
-        { l.Radiance[0], l.Radiance[1], l.Radiance[2] }, false });
+      locals.Add(l.Center, l.Radius, l.Radiance, false);
     }
     for (const auto& l : lighting->GetPointLights())
     {
-      locals.push_back({ { l.Position[0], l.Position[1], l.Position[2] }, 0.0,
-        { l.Intensity[0], l.Intensity[1], l.Intensity[2] }, true });
+      locals.Add(l.Position, 0.0, l.Intensity, true);
     }
   }
   const proxygi::sh::AnalyticLightTables* lightTables =
@@ -426,11 +419,7 @@ int vtkPGIGlobalIllumination::RequestData(
   bool runShadowed = false;
   if (indirectMode == INDIRECT_MODE_SHADOWED)
   {
-    proxygi::LocalEmitters emitters;
-    for (const LocalSphere& l : locals)
-    {
-      emitters.Add(l.Center, l.Radius, l.Radiance, l.Point);
-    }
+    const proxygi::LocalEmitters& emitters = locals;
     std::string summary, bad;
     // With a hierarchy every node is a spherical light (parents for the cuts).
     std::vector<vtkIdType> allIds;
@@ -502,19 +491,6 @@ int vtkPGIGlobalIllumination::RequestData(
   proxygi::SoftShadowSettings logSettings = settings;
   logSettings.PlanesInLogSpace = true;
   const proxygi::SoftShadows shadowsLog(logSettings);
-  auto aboveEveryPlane = [&](const float p[3])
-  {
-    for (std::size_t k = 0; k < blockers.Planes(); ++k)
-    {
-      const float* o = &blockers.PlaneOrigin[3 * k];
-      const float* m = &blockers.PlaneNormal[3 * k];
-      if (!((p[0] - o[0]) * m[0] + (p[1] - o[1]) * m[1] + (p[2] - o[2]) * m[2] > 0.0f))
-      {
-        return false;
-      }
-    }
-    return true;
-  };
 
   vtkNew<vtkFloatArray> direct, indirect, indirectShadowed, local, total, visibility;
   direct->SetName("DirectShadowed");
@@ -678,7 +654,7 @@ int vtkPGIGlobalIllumination::RequestData(
                         bounceShadowed[3] = { 0, 0, 0 };
           const proxygi::Blockers& mine =
             clusterOf.empty() ? blockers : clusterBlockers[clusterOf[i]];
-          const bool lightCarriesPlanes = planesInLight && aboveEveryPlane(p);
+          const bool lightCarriesPlanes = planesInLight && blockers.AboveEveryPlane(p);
           seen.clear();
           if (needVisibility)
           {
@@ -754,33 +730,10 @@ int vtkPGIGlobalIllumination::RequestData(
           {
             bounceShadowed[c] += planeBounce[c];
           }
-          for (const LocalSphere& l : locals)
+          if (lightTables)
           {
-            double dir[3] = { l.Center[0] - pd[0], l.Center[1] - pd[1], l.Center[2] - pd[2] };
-            const double dist = vtkMath::Normalize(dir);
-            if (!(dist > l.Radius))
-            {
-              continue; // inside an emitter
-            }
-            // Below the table's first node L_H grows as sin^2(theta) with a
-            // fixed shape: evaluate there and scale (point lights: theta -> 0,
-            // radiance I / (pi d^2 sin^2 theta)).
-            const double theta = l.Point ? 0.0 : std::asin(l.Radius / dist);
-            const double theta1 =
-              proxygi::sh::AnalyticLightTables::MaxTheta / (lightTables->GetThetaResolution() - 1);
-            const double thetaEval = std::max(theta, theta1);
-            const double s1 = std::sin(thetaEval);
-            const double scale = l.Point ? 1.0 / (vtkMath::Pi() * dist * dist * s1 * s1)
-                                         : std::pow(std::sin(theta) / s1, 2);
-            const float df[3] = { float(dir[0]), float(dir[1]), float(dir[2]) };
-            float lh[proxygi::sh::MaxCoefficients];
-            lightTables->Evaluate(nf, df, static_cast<float>(thetaEval), lh);
-            const float weight =
-              std::max(0.0f, proxygi::sh::Dot(n2, lh, this->Shadows ? g : unshadowed));
-            for (int k = 0; k < 3; ++k)
-            {
-              lit[k] += static_cast<float>(scale * l.Radiance[k]) * weight;
-            }
+            proxygi::LocalLightsRadiance(
+              locals, *lightTables, pd, nf, this->Shadows ? g : nullptr, lit);
           }
           proxygi::AlbedoOf(receivers, this->AlbedoArrayName, i, this->DefaultAlbedo, albedo);
           float sum[3];

@@ -609,3 +609,46 @@ void pgiAnalyticLight(vec3 n, vec3 d, float theta, out float lh[PGI_SH_N2])
   float ca = cos(angle), sa = sin(angle) / len;
   pgiRotateScaledZonal(zh, ca * n + sa * t, lh);
 }
+
+// Local lights: centre and radius (< 0: a point light), radiance (point
+// lights: intensity); the lobe table's first theta node.
+#define PGI_MAX_LOCAL_LIGHTS 16
+uniform int pgiNumLocalLights;
+uniform vec4 pgiLocalLight[PGI_MAX_LOCAL_LIGHTS];
+uniform vec3 pgiLocalRadiance[PGI_MAX_LOCAL_LIGHTS];
+uniform float pgiLobeMinTheta;
+
+// The local lights' exit radiance at a white receiver, shadowed by g when
+// `shadowed`: proxygi::LocalLightsRadiance's twin. Below the table's first
+// node L_H grows as sin^2(theta) with a fixed shape: it is evaluated there
+// and scaled (point lights: theta -> 0, radiance I / (pi d^2 sin^2 theta)).
+vec3 pgiLocalLights(vec3 p, vec3 n, bool shadowed, float g[PGI_SH_N2])
+{
+  vec3 lit = vec3(0.0);
+  for (int k = 0; k < pgiNumLocalLights; ++k)
+  {
+    vec4 l = pgiLocalLight[k];
+    bool point = l.w < 0.0;
+    float radius = point ? 0.0 : l.w;
+    vec3 dir = l.xyz - p;
+    float dist = sqrt(dir.x * dir.x + dir.y * dir.y + dir.z * dir.z);
+    if (!(dist > radius))
+    {
+      continue; // inside an emitter
+    }
+    dir /= dist;
+    float sinTheta = radius / dist;
+    float thetaEval = max(point ? 0.0 : pgiAsin(sinTheta), pgiLobeMinTheta);
+    float s1 = sin(thetaEval);
+    float scale = point ? 1.0 / (pgiPi * dist * dist * s1 * s1) : (sinTheta / s1) * (sinTheta / s1);
+    float lh[PGI_SH_N2];
+    pgiAnalyticLight(n, dir, thetaEval, lh);
+    float weight = 0.0;
+    for (int i = 0; i < PGI_SH_N2; ++i)
+    {
+      weight += lh[i] * (shadowed ? g[i] : (i == 0 ? pgiSqrtFourPi : 0.0));
+    }
+    lit += scale * pgiLocalRadiance[k] * max(0.0, weight);
+  }
+  return lit;
+}

@@ -116,7 +116,8 @@ int TestRenderingBunny(int argc, char* argv[])
   // One finite RGB per vertex read back (a failed read-back has none).
   PGI_CHECK(radiance->GetNumberOfTuples() == bunny->GetNumberOfPoints());
   PGI_CHECK(pgitest::NonFiniteValues(radiance.Get()) == 0);
-  for (vtkIdType i = 0; i < std::min(radiance->GetNumberOfTuples(), bunny->GetNumberOfPoints()); ++i)
+  for (vtkIdType i = 0; i < std::min(radiance->GetNumberOfTuples(), bunny->GetNumberOfPoints());
+       ++i)
   {
     for (int k = 0; k < 3; ++k)
     {

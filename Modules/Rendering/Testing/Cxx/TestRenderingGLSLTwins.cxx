@@ -667,7 +667,7 @@ int TestRenderingGLSLTwins(int, char*[])
           const int used = shadows.Visibility(p, nrm, lit, g, status);
           above.Shade(nrm, g, rgb);
           above.ShadeUnshadowed(nrm, flat);
-          const bool isAbove = (p[2] - planeO[2]) * planeN[2] > 0.0f;
+          const bool isAbove = lit.AboveEveryPlane(p);
           seen.clear();
           shadowsLog.Visibility(p, nrm, lit, g, status, &seen);
           if (status != sh::Status::Ok)
@@ -755,6 +755,87 @@ int TestRenderingGLSLTwins(int, char*[])
           }
         }
         Report("pgiAnalyticLight vs Evaluate", order, lh, 2e-4);
+      }
+
+      // pgiLocalLights against proxygi::LocalLightsRadiance: three sphere
+      // lights (one small enough to fall below the table's first node) and
+      // two point lights over receivers in a box, unshadowed and shadowed by
+      // a visibility both sides build from the same formula.
+      proxygi::LocalEmitters lights;
+      const double centres[5][3] = { { 0.5, 0.2, 3.0 }, { -2.0, 1.0, 1.5 }, { 1.5, -1.5, 0.8 },
+        { 0.0, 0.0, 4.0 }, { -1.0, -2.0, 2.0 } };
+      const double radii[5] = { 0.6, 0.02, 0.3, 0.0, 0.0 };
+      const double power[5][3] = { { 5, 4, 3 }, { 200, 200, 100 }, { 2, 6, 2 }, { 30, 30, 30 },
+        { 10, 0, 5 } };
+      std::vector<float> lightUniform(4 * 16, 0.0f), radianceUniform(3 * 16, 0.0f);
+      for (int k = 0; k < 5; ++k)
+      {
+        const bool point = radii[k] == 0.0;
+        lights.Add(centres[k], radii[k], power[k], point);
+        for (int c = 0; c < 3; ++c)
+        {
+          lightUniform[4 * k + c] = static_cast<float>(centres[k][c]);
+          radianceUniform[3 * k + c] = static_cast<float>(power[k][c]);
+        }
+        lightUniform[4 * k + 3] = point ? -1.0f : static_cast<float>(radii[k]);
+      }
+      in.assign(8 * samples, 0.0f);
+      for (int s = 0; s < samples; ++s)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          in[8 * s + c] = static_cast<float>(random.Uniform(-2.5, 2.5));
+        }
+        random.Direction(&in[8 * s + 4]);
+      }
+      const auto visibilityOf = [](int i)
+      {
+        return (i == 0 ? 0.6f * std::sqrt(4.0f * static_cast<float>(sh::Pi)) : 0.0f) +
+          0.2f * std::sin(static_cast<float>(i) + 1.0f);
+      };
+      const std::string body =
+        "  float g[PGI_SH_N2];\n"
+        "  for (int i = 0; i < PGI_SH_N2; ++i)\n"
+        "  {\n"
+        "    g[i] = (i == 0 ? 0.6 * pgiSqrtFourPi : 0.0) + 0.2 * sin(float(i) + 1.0);\n"
+        "  }\n"
+        "  pgiOut0 = vec4(pgiLocalLights(pgiIn0.xyz, pgiIn1.xyz, false, g), 0.0);\n"
+        "  pgiOut1 = vec4(pgiLocalLights(pgiIn0.xyz, pgiIn1.xyz, true, g), 0.0);\n";
+      const double minTheta = harness.Resources().GetAnalyticLightMinTheta();
+      const auto localUniforms = [&](vtkShaderProgram* program)
+      {
+        program->SetUniformi("pgiNumLocalLights", 5);
+        program->SetUniform4fv("pgiLocalLight", 16, lightUniform.data());
+        program->SetUniform3fv("pgiLocalRadiance", 16, radianceUniform.data());
+        program->SetUniformf("pgiLobeMinTheta", static_cast<float>(minTheta));
+      };
+      if (harness.Run(order, "", body, 2, 2, in, out, localUniforms))
+      {
+        float g[sh::MaxCoefficients];
+        for (int i = 0; i < n2; ++i)
+        {
+          g[i] = visibilityOf(i);
+        }
+        Stats open, shadowed;
+        for (int s = 0; s < samples; ++s)
+        {
+          const double p[3] = { in[8 * s], in[8 * s + 1], in[8 * s + 2] };
+          float litOpen[3], litShadowed[3];
+          proxygi::LocalLightsRadiance(lights, lobes, p, &in[8 * s + 4], nullptr, litOpen);
+          proxygi::LocalLightsRadiance(lights, lobes, p, &in[8 * s + 4], g, litShadowed);
+          for (int c = 0; c < 3; ++c)
+          {
+            open.Add(out[8 * s + c], litOpen[c]);
+            shadowed.Add(out[8 * s + 4 + c], litShadowed[c]);
+          }
+        }
+        Report("pgiLocalLights (unshadowed) vs LocalLightsRadiance", order, open, 2e-4);
+        Report("pgiLocalLights (shadowed) vs LocalLightsRadiance", order, shadowed, 2e-4);
+      }
+      else
+      {
+        std::printf("FAILED harness: %s\n", harness.GetError().c_str());
+        ++pgitest::Failures();
       }
       harness.Resources().SetAnalyticLightTable(false);
     }

@@ -142,8 +142,8 @@ int TestRenderingImageSpaceScene(int argc, char* argv[])
   PGI_CHECK(pass->GetVisibilityBuffer(visibility, mask));
   const long nonFinite = pgitest::NonFiniteValues(visibility.Get());
   std::printf("receiver buffer: %lld samples x %d coefficients, %ld non-finite\n",
-    static_cast<long long>(visibility->GetNumberOfTuples()),
-    visibility->GetNumberOfComponents(), nonFinite);
+    static_cast<long long>(visibility->GetNumberOfTuples()), visibility->GetNumberOfComponents(),
+    nonFinite);
   PGI_CHECK(visibility->GetNumberOfTuples() > 0 && mask->GetRange(0)[1] > 0.5);
   PGI_CHECK(nonFinite == 0);
 

@@ -190,8 +190,9 @@ int TestSoftShadowsHierarchy(int, char*[])
     for (const std::string& line : cut->GetPlan())
     {
       std::printf("  plan: %s\n", line.c_str());
-      std::sscanf(line.c_str(), "hierarchy: %*d receiver clusters, cuts of %lf spheres on average "
-                                "(of %lf leaves)",
+      std::sscanf(line.c_str(),
+        "hierarchy: %*d receiver clusters, cuts of %lf spheres on average "
+        "(of %lf leaves)",
         &cutSize, &leaves);
     }
     std::printf("filter with hierarchy (25 deg) against all leaves: relative RMSE %.3f%%, max "
