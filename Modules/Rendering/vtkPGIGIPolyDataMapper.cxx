@@ -276,14 +276,7 @@ bool vtkPGIGIPolyDataMapper::UpdateSphericalLights(vtkPGILighting* lighting)
   proxygi::LocalEmitters emitters;
   if (this->LocalLights)
   {
-    for (const auto& l : lighting->GetSphereLights())
-    {
-      emitters.Add(l.Center, l.Radius, l.Radiance, false);
-    }
-    for (const auto& l : lighting->GetPointLights())
-    {
-      emitters.Add(l.Position, 0.0, l.Intensity, true);
-    }
+    emitters.AddLights(*lighting);
   }
   proxygi::SphericalLights lights;
   std::string summary, error;

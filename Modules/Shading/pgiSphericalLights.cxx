@@ -11,6 +11,7 @@
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkMath.h"
+#include "vtkPGILighting.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
@@ -96,6 +97,18 @@ void LocalLightsRadiance(const LocalEmitters& lights, const sh::AnalyticLightTab
     {
       lit[c] += static_cast<float>(scale * lights.Radiance[3 * k + c]) * weight;
     }
+  }
+}
+
+void LocalEmitters::AddLights(const vtkPGILighting& lighting)
+{
+  for (const auto& l : lighting.GetSphereLights())
+  {
+    this->Add(l.Center, l.Radius, l.Radiance, false);
+  }
+  for (const auto& l : lighting.GetPointLights())
+  {
+    this->Add(l.Position, 0.0, l.Intensity, true);
   }
 }
 

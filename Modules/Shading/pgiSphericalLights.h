@@ -41,6 +41,7 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkPGILighting;
 class vtkPolyData;
 
 namespace proxygi
@@ -83,6 +84,8 @@ struct PROXYGISHADING_EXPORT LocalEmitters
   std::vector<float> X, Y, Z, R, Radiance; // Radiance: 3 per light
   std::vector<char> Point;                 // point light: Radiance holds the intensity
   void Add(const double c[3], double r, const double rgb[3], bool point);
+  /// Every sphere light and point light of `lighting`.
+  void AddLights(const vtkPGILighting& lighting);
   std::size_t Count() const { return this->X.size(); }
 };
 

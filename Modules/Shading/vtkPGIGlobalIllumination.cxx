@@ -384,14 +384,7 @@ int vtkPGIGlobalIllumination::RequestData(
   proxygi::LocalEmitters locals;
   if (runLocal)
   {
-    for (const auto& l : lighting->GetSphereLights())
-    {
-      locals.Add(l.Center, l.Radius, l.Radiance, false);
-    }
-    for (const auto& l : lighting->GetPointLights())
-    {
-      locals.Add(l.Position, 0.0, l.Intensity, true);
-    }
+    locals.AddLights(*lighting);
   }
   const proxygi::sh::AnalyticLightTables* lightTables =
     runLocal ? &proxygi::sh::AnalyticLightTables::Get(order) : nullptr;
@@ -419,7 +412,6 @@ int vtkPGIGlobalIllumination::RequestData(
   bool runShadowed = false;
   if (indirectMode == INDIRECT_MODE_SHADOWED)
   {
-    const proxygi::LocalEmitters& emitters = locals;
     std::string summary, bad;
     // With a hierarchy every node is a spherical light (parents for the cuts).
     std::vector<vtkIdType> allIds;
@@ -433,7 +425,7 @@ int vtkPGIGlobalIllumination::RequestData(
     const std::string why = PrepareSphericalLights(proxies, useHierarchy ? allIds : leafIds,
       useHierarchy ? proxies->GetPointData()->GetArray("Level") : nullptr, order,
       this->AlbedoArrayName, this->DefaultAlbedo, shading, dark, blockers,
-      emitters.Count() ? &emitters : nullptr, shadowedIndirect, spheres, summary, bad);
+      locals.Count() ? &locals : nullptr, shadowedIndirect, spheres, summary, bad);
     if (!bad.empty())
     {
       vtkErrorMacro(<< bad);
@@ -733,7 +725,7 @@ int vtkPGIGlobalIllumination::RequestData(
           if (lightTables)
           {
             proxygi::LocalLightsRadiance(
-              locals, *lightTables, pd, nf, this->Shadows ? g : nullptr, lit);
+              locals, *lightTables, pd, nf, this->Shadows ? g : unshadowed, lit);
           }
           proxygi::AlbedoOf(receivers, this->AlbedoArrayName, i, this->DefaultAlbedo, albedo);
           float sum[3];
