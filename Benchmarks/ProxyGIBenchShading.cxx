@@ -5,6 +5,7 @@
 // effect the scene does not call for (skipped) against the effect off, and
 // against the effect running, to show a skipped effect costs nothing.
 #include "pgiSoftShadows.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 
@@ -147,11 +148,11 @@ void BenchPlan(benchmark::State& state, int variant)
   const bool dark = variant == 1 || variant == 3;
   gi->SetProxiesData(Proxies(variant == 6 ? 1 : 8, dark ? 0.0 : 0.8, variant == 6));
   gi->SetLighting(lighting);
-  gi->SetIndirect(variant >= 1 && variant <= 4);
-  gi->SetIndirectMode(variant == 3 || variant == 4
-      ? vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED
-      : vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED);
-  gi->SetLocalLights(variant == 5);
+  gi->GetSettings()->SetIndirect(variant >= 1 && variant <= 4);
+  gi->GetSettings()->SetIndirectMode(variant == 3 || variant == 4
+      ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+      : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+  gi->GetSettings()->SetLocalLights(variant == 5);
   if (variant == 7)
   {
     gi->SetProxiesData(nullptr);

@@ -10,6 +10,7 @@
 //                  [scene.json ...]
 #include "pgiScene.h"
 #include "pgiScenePipeline.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 
@@ -141,8 +142,8 @@ int main(int argc, char* argv[])
 
   // Proxies per sphere count (cached), with the hierarchy above them.
   std::map<int, SceneProxies> proxies;
-  const std::vector<int> counts = quick ? std::vector<int>{ 32, 64 }
-                                        : std::vector<int>{ 16, 32, 64, 128 };
+  const std::vector<int> counts =
+    quick ? std::vector<int>{ 32, 64 } : std::vector<int>{ 16, 32, 64, 128 };
   for (int count : counts)
   {
     if (!BuildSceneProxies(scene, loaded, count, cache, proxies[count], error))
@@ -158,14 +159,14 @@ int main(int argc, char* argv[])
   struct Config
   {
     std::string Knob, Setting;
-    int Order = 4, Method = vtkPGIGlobalIllumination::EXP_HYB, Spheres = 64;
+    int Order = 4, Method = vtkPGIGISettings::EXP_HYB, Spheres = 64;
     double Hierarchy = 0.0;
-    int Operator = vtkPGIGlobalIllumination::INDIRECT_AVERAGED;
+    int Operator = vtkPGIGISettings::INDIRECT_AVERAGED;
     bool Shadows = true;
-    int Planes = vtkPGIGlobalIllumination::PLANES_IN_LIGHT;
+    int Planes = vtkPGIGISettings::PLANES_IN_LIGHT;
     bool PlaneBounceShadows = true;
-    int Mode = vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED;
-    int Blocking = vtkPGIGlobalIllumination::BLOCKING_PER_SPHERE;
+    int Mode = vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
+    int Blocking = vtkPGIGISettings::BLOCKING_PER_SPHERE;
   };
   std::vector<Config> configs;
   configs.push_back({ "baseline", "order 4, HYB, 64 spheres, averaged" });
@@ -176,8 +177,8 @@ int main(int argc, char* argv[])
     configs.push_back(c);
   }
   const char* methodNames[] = { "PS-2", "PS*-2", "OL", "HYB" };
-  for (int m : { vtkPGIGlobalIllumination::EXP_PS, vtkPGIGlobalIllumination::EXP_PS_STAR,
-         vtkPGIGlobalIllumination::EXP_OL })
+  for (int m :
+    { vtkPGIGISettings::EXP_PS, vtkPGIGISettings::EXP_PS_STAR, vtkPGIGISettings::EXP_OL })
   {
     Config c{ "exp method", methodNames[m] };
     c.Method = m;
@@ -200,8 +201,7 @@ int main(int argc, char* argv[])
     configs.push_back(c);
   }
   const char* operatorNames[] = { "point-sampled", "averaged", "exact" };
-  for (int op : { vtkPGIGlobalIllumination::INDIRECT_POINT_SAMPLED,
-         vtkPGIGlobalIllumination::INDIRECT_EXACT })
+  for (int op : { vtkPGIGISettings::INDIRECT_POINT_SAMPLED, vtkPGIGISettings::INDIRECT_EXACT })
   {
     Config c{ "indirect operator", operatorNames[op] };
     c.Operator = op;
@@ -209,7 +209,7 @@ int main(int argc, char* argv[])
   }
   {
     Config c{ "plane blocking", "log-space cap (the image-space pass's way)" };
-    c.Planes = vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE;
+    c.Planes = vtkPGIGISettings::PLANES_IN_LOG_SPACE;
     configs.push_back(c);
   }
   {
@@ -219,13 +219,13 @@ int main(int argc, char* argv[])
   }
   {
     Config c{ "indirect model", "shadowed spherical lights, per-sphere blocking" };
-    c.Mode = vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED;
+    c.Mode = vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
     configs.push_back(c);
     c.Setting = "shadowed spherical lights, per-object blocking";
-    c.Blocking = vtkPGIGlobalIllumination::BLOCKING_PER_OBJECT;
+    c.Blocking = vtkPGIGISettings::BLOCKING_PER_OBJECT;
     configs.push_back(c);
     c.Setting = "shadowed, per sphere, hierarchy 25 deg";
-    c.Blocking = vtkPGIGlobalIllumination::BLOCKING_PER_SPHERE;
+    c.Blocking = vtkPGIGISettings::BLOCKING_PER_SPHERE;
     c.Hierarchy = 25.0;
     configs.push_back(c);
   }
@@ -257,15 +257,15 @@ int main(int argc, char* argv[])
         vtkNew<vtkPGIGlobalIllumination> gi;
         gi->SetInputData(r);
         ConfigureGlobalIllumination(gi, scene, loaded, proxies.at(c.Spheres));
-        gi->SetOrder(c.Order);
-        gi->SetExpMethod(c.Method);
-        gi->SetHierarchyAngle(c.Hierarchy);
-        gi->SetIndirectOperator(c.Operator);
-        gi->SetShadows(c.Shadows);
-        gi->SetPlaneBlocking(c.Planes);
-        gi->SetPlaneBounceShadows(c.PlaneBounceShadows);
-        gi->SetIndirectMode(c.Mode);
-        gi->SetSphericalLightBlocking(c.Blocking);
+        gi->GetSettings()->SetOrder(c.Order);
+        gi->GetSettings()->SetExpMethod(c.Method);
+        gi->GetSettings()->SetHierarchyAngle(c.Hierarchy);
+        gi->GetSettings()->SetIndirectOperator(c.Operator);
+        gi->GetSettings()->SetShadows(c.Shadows);
+        gi->GetSettings()->SetPlaneBlocking(c.Planes);
+        gi->GetSettings()->SetPlaneBounceShadows(c.PlaneBounceShadows);
+        gi->GetSettings()->SetIndirectMode(c.Mode);
+        gi->GetSettings()->SetSphericalLightBlocking(c.Blocking);
         gi->Update();
         shaded.push_back(gi->GetOutput());
       }
@@ -387,8 +387,8 @@ int main(int argc, char* argv[])
         planes.push_back(k);
       }
     }
-    for (int mode : { vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED,
-           vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED })
+    for (int mode :
+      { vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED, vtkPGIGISettings::INDIRECT_MODE_SHADOWED })
     {
       std::vector<vtkSmartPointer<vtkPolyData>> shaded;
       vtkIdType count = 0;
@@ -402,7 +402,7 @@ int main(int argc, char* argv[])
           vtkNew<vtkPGIGlobalIllumination> gi;
           gi->SetInputData(r);
           ConfigureGlobalIllumination(gi, sd, ld, sp);
-          gi->SetIndirectMode(mode);
+          gi->GetSettings()->SetIndirectMode(mode);
           gi->Update();
           shaded.push_back(gi->GetOutput());
           count += repeat == 0 ? r->GetNumberOfPoints() : 0;
@@ -414,7 +414,7 @@ int main(int argc, char* argv[])
       std::snprintf(line, sizeof(line),
         "| %s | %s | %lld | %.3f | %.1f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% |\n",
         sd.Name.c_str(),
-        mode == vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED ? "shadowed" : "unshadowed",
+        mode == vtkPGIGISettings::INDIRECT_MODE_SHADOWED ? "shadowed" : "unshadowed",
         static_cast<long long>(count), best, tracing,
         100 * RelativeRMS(ref, "RadianceStdErr", "Radiance"),
         100 * RelativeRMSE(shaded, "DirectShadowed", ref, "DirectShadowed"),
@@ -469,7 +469,8 @@ int main(int argc, char* argv[])
     table->AddColumn(x);
     table->AddColumn(y);
     tables.push_back(table);
-    vtkPlot* plot = chart->AddPlot(knobs[k] == "Embree reference" ? vtkChart::LINE : vtkChart::POINTS);
+    vtkPlot* plot =
+      chart->AddPlot(knobs[k] == "Embree reference" ? vtkChart::LINE : vtkChart::POINTS);
     plot->SetInputData(table, 0, 1);
     const unsigned char* rgb = palette[k % 12];
     plot->SetColor(rgb[0], rgb[1], rgb[2], 255);

@@ -79,12 +79,12 @@ int main(int argc, char* argv[])
   {
     mapper->SetProxies(proxies);
     mapper->SetLighting(lighting);
-    mapper->SetOrder(4);
+    mapper->GetSettings()->SetOrder(4);
   }
   // The ball is shadowed by the ground: an infinite blocker plane.
   const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
   ballMapper->AddBlockerPlane(origin, up);
-  ballMapper->SetAlbedo(0.9, 0.5, 0.3);
+  ballMapper->GetSettings()->SetDefaultAlbedo(0.9, 0.5, 0.3);
 
   vtkNew<vtkActor> groundActor, ballActor;
   groundActor->SetMapper(groundMapper);

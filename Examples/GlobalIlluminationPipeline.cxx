@@ -63,7 +63,7 @@ int main()
   gi->SetInputConnection(mesh->GetOutputPort());
   gi->SetProxiesConnection(samples->GetOutputPort());
   gi->SetLighting(lighting);
-  gi->SetIndirectModeToShadowed();
+  gi->GetSettings()->SetIndirectModeToShadowed();
   const double ground[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 }, grey[3] = { 0.5, 0.5, 0.5 };
   gi->AddBlockerPlane(ground, up, grey);
   gi->Update();

@@ -37,17 +37,23 @@ with per-vertex SH soft shadows, one-bounce indirect light from the proxies
 and planes, and local lights, on the GPU (vtkPGIGIPolyDataMapper; EGL without
 a display) or on the CPU (vtkPGIGlobalIllumination); prints what ran, the time
 per stage and the per-vertex error against the Embree reference of the same
-scene (computed once, cached).
+scene (computed once, cached). One set of GI settings drives every mode; a
+setting the mode's backend cannot honour is printed as "not honoured: ...",
+an option a mode has no use for as "note: ... does not apply".
 
   -o FILE             output PNG (default proxygi-render.png)
   --cache DIR         proxies and references are cached here (proxygi-cache)
-  --order N           SH order 2..8 (default 4)
-  --method M          exp method: HYB (default), OL, PS*, PS
+  --order N           SH order 2..8 (default 4; the GPU mapper runs up to 6,
+                      the image-space pass up to 4, and says so)
+  --method M          exp method: HYB (default), OL, PS*, PS (the GPU modes
+                      run HYB and say so)
   --spheres N         proxy spheres per mesh (default 64)
-  --indirect M        one-bounce light: shadowed (default; spherical lights,
-                      Guerrero 2008), unshadowed (Sloan 2007), off
-  --hierarchy DEG     hierarchy cuts: receiver clusters use the cut whose
-                      spheres subtend less than DEG (default 25; 0 = all leaves)
+  --indirect M        one-bounce light: shadowed (spherical lights, Guerrero
+                      2008; default in vertex and gpu), unshadowed (Sloan 2007;
+                      default and only one in image-space), off
+  --hierarchy DEG     hierarchy cuts (vertex mode): receiver clusters use the
+                      cut whose spheres subtend less than DEG (default 25 in
+                      vertex mode, 0 = all leaves; 0 in the GPU modes)
   --size WxH          image size (default: the scene's)
   --reference-spp N   samples per vertex of the reference (default 1024)
   --exposure E        tone-mapping scale (default: 95th percentile to 0.8)

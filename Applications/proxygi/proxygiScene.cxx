@@ -10,6 +10,7 @@
 #include "pgiScene.h"
 #include "pgiScenePipeline.h"
 #include "vtkPGIGIPolyDataMapper.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGIImageSpaceGIPass.h"
 #include "vtkPGILighting.h"
@@ -53,101 +54,166 @@ double Seconds(Clock::time_point a, Clock::time_point b)
   return std::chrono::duration<double>(b - a).count();
 }
 
-} // namespace
+bool Given(const Args& args, const std::string& name)
+{
+  return std::find(args.begin(), args.end(), name) != args.end();
+}
 
-int RunRenderScene(const Args& args, const std::string& scenePath)
+struct RenderOptions
+{
+  std::string Mode = "gpu";
+  int Order = 4, Spheres = 64, ReferenceSpp = 1024, ReceiverScale = 2, PixelSpp = 256;
+  int ExpMethod = vtkPGIGISettings::EXP_HYB;
+  std::string MethodName = "HYB", IndirectName = "shadowed";
+  double HierarchyAngle = 25.0, Exposure = 0.0;
+  std::string Output, Cache, Vtp, ReferencePNG;
+  bool NoError = false, PixelError = false;
+  bool Gpu() const { return this->Mode == "gpu"; }
+  bool ImageSpace() const { return this->Mode == "image-space"; }
+  bool Vertex() const { return this->Mode == "vertex"; }
+};
+
+// Options, checked; the knobs a mode has no use for are said, not dropped.
+bool ParseRenderOptions(const Args& args, RenderOptions& o)
 {
   bool ok = true;
-  const int order = static_cast<int>(NumberOption(args, "--order", 4, ok));
-  const int spheres = static_cast<int>(NumberOption(args, "--spheres", 64, ok));
-  const int referenceSpp = static_cast<int>(NumberOption(args, "--reference-spp", 1024, ok));
-  const std::string methodName = Option(args, "--method", "HYB");
-  const std::string indirectName = Option(args, "--indirect", "shadowed");
-  const std::string mode = Option(args, "--mode", "gpu");
-  const double hierarchyAngle = NumberOption(args, "--hierarchy", 25.0, ok);
-  const int receiverScale = static_cast<int>(NumberOption(args, "--scale", 2, ok));
-  const int pixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
-  if ((mode != "gpu" && mode != "vertex" && mode != "image-space") ||
-    (receiverScale != 1 && receiverScale != 2 && receiverScale != 4 && receiverScale != 8) ||
-    pixelSpp < 1)
+  o.Mode = Option(args, "--mode", "gpu");
+  o.Order = static_cast<int>(NumberOption(args, "--order", 4, ok));
+  o.Spheres = static_cast<int>(NumberOption(args, "--spheres", 64, ok));
+  o.ReferenceSpp = static_cast<int>(NumberOption(args, "--reference-spp", 1024, ok));
+  o.MethodName = Option(args, "--method", "HYB");
+  // The image-space pass has the unshadowed bounce only: its default.
+  o.IndirectName = Option(args, "--indirect", o.Mode == "image-space" ? "unshadowed" : "shadowed");
+  // Hierarchy cuts are the CPU filter's: on by default there only.
+  o.HierarchyAngle = NumberOption(args, "--hierarchy", o.Mode == "vertex" ? 25.0 : 0.0, ok);
+  o.ReceiverScale = static_cast<int>(NumberOption(args, "--scale", 2, ok));
+  o.PixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
+  o.Exposure = NumberOption(args, "--exposure", 0.0, ok);
+  o.Output = Option(args, "-o", "proxygi-render.png");
+  o.Cache = Option(args, "--cache", "proxygi-cache");
+  o.Vtp = Option(args, "--vtp", "");
+  o.ReferencePNG = Option(args, "--reference-png", "");
+  o.NoError = Flag(args, "--no-error");
+  o.PixelError = o.ImageSpace() || Flag(args, "--pixel-error");
+  if (!ok)
+  {
+    return false;
+  }
+  if ((!o.Gpu() && !o.Vertex() && !o.ImageSpace()) ||
+    (o.ReceiverScale != 1 && o.ReceiverScale != 2 && o.ReceiverScale != 4 &&
+      o.ReceiverScale != 8) ||
+    o.PixelSpp < 1)
   {
     std::fprintf(stderr,
       "proxygi render: --mode gpu|vertex|image-space, --scale 1|2|4|8, "
       "--pixel-reference-spp >= 1\n");
-    return 2;
+    return false;
   }
-  const bool imageSpace = mode == "image-space";
-  const bool gpu = mode == "gpu";
-  const std::map<std::string, int> indirectModes = {
-    { "shadowed", vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED },
-    { "unshadowed", vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED },
-    { "off", vtkPGIGlobalIllumination::INDIRECT_MODE_OFF }
-  };
-  if (!indirectModes.count(indirectName))
+  if (o.IndirectName != "shadowed" && o.IndirectName != "unshadowed" && o.IndirectName != "off")
   {
     std::fprintf(stderr, "proxygi render: --indirect shadowed|unshadowed|off\n");
-    return 2;
+    return false;
   }
-  const std::string output = Option(args, "-o", "proxygi-render.png");
-  const std::string cache = Option(args, "--cache", "proxygi-cache");
-  if (!ok)
-  {
-    return 2;
-  }
-  const std::map<std::string, int> methods = { { "PS", vtkPGIGlobalIllumination::EXP_PS },
-    { "PS*", vtkPGIGlobalIllumination::EXP_PS_STAR }, { "OL", vtkPGIGlobalIllumination::EXP_OL },
-    { "HYB", vtkPGIGlobalIllumination::EXP_HYB } };
-  if (!methods.count(methodName) || order < 2 || order > 8 || spheres < 1 || referenceSpp < 1)
+  const std::map<std::string, int> methods = { { "PS", vtkPGIGISettings::EXP_PS },
+    { "PS*", vtkPGIGISettings::EXP_PS_STAR }, { "OL", vtkPGIGISettings::EXP_OL },
+    { "HYB", vtkPGIGISettings::EXP_HYB } };
+  if (!methods.count(o.MethodName) || o.Order < 2 || o.Order > 8 || o.Spheres < 1 ||
+    o.ReferenceSpp < 1 || o.HierarchyAngle < 0.0 || o.HierarchyAngle > 89.0)
   {
     std::fprintf(stderr,
       "proxygi render: need --method HYB|OL|PS*|PS, 2 <= --order <= 8, "
-      "--spheres >= 1, --reference-spp >= 1\n");
-    return 2;
+      "--spheres >= 1, --reference-spp >= 1, 0 <= --hierarchy <= 89\n");
+    return false;
   }
-  SceneDescription scene = DefaultScene();
-  std::string error;
-  if (!scenePath.empty() && !LoadScene(scenePath, scene, error))
+  o.ExpMethod = methods.at(o.MethodName);
+  // What does not apply in this mode.
+  const auto notFor = [&](const char* option, const char* why)
   {
-    std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
-    return 1;
-  }
-  const std::string size = Option(args, "--size", "");
-  if (!size.empty() && std::sscanf(size.c_str(), "%dx%d", &scene.Size[0], &scene.Size[1]) != 2)
-  {
-    std::fprintf(stderr, "proxygi render: --size expects WxH\n");
-    return 2;
-  }
-  LoadedScene loaded;
-  if (!BuildScene(scene, loaded, error))
-  {
-    std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
-    return 1;
-  }
-  std::printf("scene: %s\n", scene.Name.c_str());
-
-  // Proxies (cached), then the SH shading of every object's vertices.
-  SceneProxies proxies;
-  if (!BuildSceneProxies(scene, loaded, spheres, cache, proxies, error))
-  {
-    std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
-    return 1;
-  }
-  const auto receiversIn = SceneReceivers(loaded);
-  const auto t1 = Clock::now();
-  std::vector<vtkSmartPointer<vtkPolyData>> shaded;
-  for (auto& receivers : receiversIn)
-  {
-    if (gpu)
+    if (Given(args, option))
     {
-      break; // the GI mapper shades them while rendering
+      std::printf("note: %s does not apply to --mode %s (%s)\n", option, o.Mode.c_str(), why);
     }
+  };
+  if (!o.ImageSpace())
+  {
+    notFor("--scale", "the receiver buffer is the image-space pass's");
+  }
+  if (o.ImageSpace())
+  {
+    notFor("--reference-spp", "image-space is compared per pixel: --pixel-reference-spp");
+    notFor("--vtp", "image-space has no per-vertex results");
+  }
+  if (!o.PixelError)
+  {
+    notFor("--pixel-reference-spp", "no per-pixel error without --pixel-error");
+    notFor("--reference-png", "no Embree image without --pixel-error");
+  }
+  if (o.NoError)
+  {
+    notFor("--reference-spp", "--no-error");
+    notFor("--pixel-reference-spp", "--no-error");
+  }
+  return true;
+}
+
+// One settings object for every consumer of this run.
+vtkSmartPointer<vtkPGIGISettings> MakeSettings(
+  const RenderOptions& o, const SceneDescription& scene)
+{
+  auto settings = vtkSmartPointer<vtkPGIGISettings>::New();
+  ConfigureSettings(settings, scene);
+  settings->SetOrder(o.Order);
+  settings->SetExpMethod(o.ExpMethod);
+  settings->SetIndirect(scene.Indirect && o.IndirectName != "off");
+  settings->SetIndirectMode(o.IndirectName == "shadowed"
+      ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+      : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+  settings->SetHierarchyAngle(o.HierarchyAngle);
+  if (o.ImageSpace())
+  {
+    // The pass keeps the planes in log space and has no plane-bounce
+    // shadows: its defaults, so a plain run has nothing to report.
+    settings->SetPlaneBlocking(vtkPGIGISettings::PLANES_IN_LOG_SPACE);
+    settings->PlaneBounceShadowsOff();
+  }
+  return settings;
+}
+
+// What the chosen backend runs of the settings: every replacement said.
+vtkSmartPointer<vtkPGIGISettings> ReportSettings(vtkPGIGISettings* settings, const RenderOptions& o,
+  const SceneProxies& proxies, const LoadedScene& loaded)
+{
+  const vtkPGIGISettings::Support& support = o.Gpu() ? vtkPGIGIPolyDataMapper::GetSupport()
+    : o.ImageSpace()                                 ? vtkPGIImageSpaceGIPass::GetSupport()
+                                                     : vtkPGIGlobalIllumination::GetSupport();
+  auto effective = vtkSmartPointer<vtkPGIGISettings>::New();
+  std::vector<std::string> notes;
+  settings->Resolve(support, static_cast<int>(proxies.Planes.size()), effective, notes);
+  const vtkPGILighting* lighting = loaded.Lighting;
+  if (o.ImageSpace() && settings->GetLocalLights() &&
+    (!lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty()))
+  {
+    notes.push_back("LocalLights: the scene's local lights are not drawn in the image-space pass");
+  }
+  for (const std::string& note : notes)
+  {
+    std::printf("not honoured: %s\n", note.c_str());
+  }
+  return effective;
+}
+
+// The CPU filter on every object (--mode vertex).
+std::vector<vtkSmartPointer<vtkPolyData>> ShadeOnCPU(
+  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, vtkPGIGISettings* settings,
+  const SceneDescription& scene, const LoadedScene& loaded, const SceneProxies& proxies)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> shaded;
+  for (auto& object : receivers)
+  {
     vtkNew<vtkPGIGlobalIllumination> gi;
-    gi->SetInputData(receivers);
+    gi->SetInputData(object);
     ConfigureGlobalIllumination(gi, scene, loaded, proxies);
-    gi->SetOrder(order);
-    gi->SetExpMethod(methods.at(methodName));
-    gi->SetIndirectMode(indirectModes.at(indirectName));
-    gi->SetHierarchyAngle(hierarchyAngle);
+    gi->SetSettings(settings);
     gi->Update();
     shaded.push_back(gi->GetOutput());
     if (shaded.size() == 1)
@@ -158,100 +224,31 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       }
     }
   }
-  auto t2 = Clock::now();
-  const std::string vtpPrefix = Option(args, "--vtp", "");
-  vtkIdType receivers = 0;
-  for (auto& s : receiversIn)
-  {
-    receivers += s->GetNumberOfPoints();
-  }
+  return shaded;
+}
 
-  // Offscreen picture: vertex radiance, tone-mapped, no VTK lighting.
-  // Exposure: the 95th percentile of the radiance to 0.8 (GPU: after the
-  // first frame, from the radiance read back).
-  double exposure = NumberOption(args, "--exposure", 0.0, ok);
-  const auto automaticExposure = [&]()
-  {
-    std::vector<double> luminance;
-    for (auto& s : shaded)
-    {
-      vtkDataArray* r = s->GetPointData()->GetArray("Radiance");
-      for (vtkIdType i = 0; i < r->GetNumberOfTuples(); ++i)
-      {
-        luminance.push_back(
-          Luminance(r->GetComponent(i, 0), r->GetComponent(i, 1), r->GetComponent(i, 2)));
-      }
-    }
-    return AutoExposure(luminance);
-  };
-  if (!(exposure > 0.0) && !gpu)
-  {
-    exposure = automaticExposure();
-  }
-  vtkNew<vtkRenderer> renderer;
-  // Per vertex on the GPU: the GI mapper set up as the filter would be.
-  std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> giMappers;
-  for (std::size_t k = 0; gpu && k < loaded.Objects.size(); ++k)
-  {
-    auto mapper = vtkSmartPointer<vtkPGIGIPolyDataMapper>::New();
-    mapper->SetInputData(receiversIn[k]);
-    mapper->SetProxies(proxies.Spheres);
-    mapper->SetLighting(loaded.Lighting);
-    for (const auto& plane : proxies.Planes)
-    {
-      mapper->AddBlockerPlane(plane.data(), plane.data() + 3, plane.data() + 6);
-    }
-    mapper->SetOrder(order);
-    mapper->SetShadows(scene.Shadows);
-    mapper->SetIndirect(scene.Indirect && indirectName != "off");
-    mapper->SetIndirectMode(indirectName == "shadowed"
-        ? vtkPGIGIPolyDataMapper::INDIRECT_MODE_SHADOWED
-        : vtkPGIGIPolyDataMapper::INDIRECT_MODE_UNSHADOWED);
-    mapper->SetLocalLights(scene.LocalLights);
-    mapper->SetAlbedo(scene.Objects[k].Albedo);
-    mapper->SetExposure(exposure > 0.0 ? exposure : 1.0);
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    renderer->AddActor(actor);
-    giMappers.push_back(mapper);
-  }
-  renderer->SetBackground(0.3, 0.3, 0.32);
-  vtkNew<vtkPGIImageSpaceGIPass> pass;
-  if (imageSpace)
-  {
-    // Per pixel on the GPU: plain mappers, the albedo as diffuse colour.
-    for (std::size_t k = 0; k < loaded.Objects.size(); ++k)
-    {
-      vtkNew<vtkPolyDataMapper> mapper;
-      mapper->SetInputData(receiversIn[k]);
-      mapper->ScalarVisibilityOff();
-      vtkNew<vtkActor> actor;
-      actor->SetMapper(mapper);
-      actor->GetProperty()->SetColor(scene.Objects[k].Albedo);
-      actor->GetProperty()->SetAmbient(0.0);
-      actor->GetProperty()->SetDiffuse(1.0);
-      actor->GetProperty()->SetSpecular(0.0);
-      renderer->AddActor(actor);
-    }
-    pass->SetProxies(proxies.Spheres);
-    pass->SetLighting(loaded.Lighting);
-    for (const auto& plane : proxies.Planes)
-    {
-      pass->AddBlockerPlane(plane.data(), plane.data() + 3, plane.data() + 6);
-    }
-    pass->SetShadows(scene.Shadows);
-    pass->SetIndirect(scene.Indirect && indirectName != "off");
-    pass->SetReceiverScale(receiverScale);
-    pass->SetExposure(exposure);
-    pass->MeasurePassTimesOn();
-    renderer->SetPass(pass);
-  }
+// Exposure: the 95th percentile of the per-vertex radiance to 0.8.
+double AutomaticExposure(const std::vector<vtkSmartPointer<vtkPolyData>>& shaded)
+{
+  std::vector<double> luminance;
   for (auto& s : shaded)
   {
-    if (imageSpace || gpu)
+    vtkDataArray* r = s->GetPointData()->GetArray("Radiance");
+    for (vtkIdType i = 0; i < r->GetNumberOfTuples(); ++i)
     {
-      break;
+      luminance.push_back(
+        Luminance(r->GetComponent(i, 0), r->GetComponent(i, 1), r->GetComponent(i, 2)));
     }
+  }
+  return AutoExposure(luminance);
+}
+
+// The CPU filter's radiance as vertex colours, no VTK lighting.
+void AddVertexColourActors(
+  vtkRenderer* renderer, const std::vector<vtkSmartPointer<vtkPolyData>>& shaded, double exposure)
+{
+  for (auto& s : shaded)
+  {
     vtkDataArray* r = s->GetPointData()->GetArray("Radiance");
     vtkNew<vtkUnsignedCharArray> colors;
     colors->SetName("DisplayColors");
@@ -276,6 +273,239 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     actor->GetProperty()->LightingOff();
     renderer->AddActor(actor);
   }
+}
+
+// Per vertex on the GPU: one GI mapper per object, all on the run's settings.
+std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> AddGPUMappers(vtkRenderer* renderer,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, vtkPGIGISettings* settings,
+  const LoadedScene& loaded, const SceneProxies& proxies, double exposure)
+{
+  std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> mappers;
+  for (auto& object : receivers)
+  {
+    auto mapper = vtkSmartPointer<vtkPGIGIPolyDataMapper>::New();
+    mapper->SetInputData(object);
+    mapper->SetProxies(proxies.Spheres);
+    mapper->SetLighting(loaded.Lighting);
+    for (const auto& plane : proxies.Planes)
+    {
+      mapper->AddBlockerPlane(plane.data(), plane.data() + 3, plane.data() + 6);
+    }
+    mapper->SetSettings(settings);
+    mapper->SetExposure(exposure > 0.0 ? exposure : 1.0);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    renderer->AddActor(actor);
+    mappers.push_back(mapper);
+  }
+  return mappers;
+}
+
+// Per pixel on the GPU: plain mappers (the albedo as diffuse colour) under the pass.
+void AddImageSpacePass(vtkRenderer* renderer, vtkPGIImageSpaceGIPass* pass,
+  const SceneDescription& scene, const std::vector<vtkSmartPointer<vtkPolyData>>& receivers,
+  vtkPGIGISettings* settings, const LoadedScene& loaded, const SceneProxies& proxies,
+  const RenderOptions& o)
+{
+  for (std::size_t k = 0; k < receivers.size(); ++k)
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(receivers[k]);
+    mapper->ScalarVisibilityOff();
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    const double* albedo = scene.Objects[k].Albedo;
+    actor->GetProperty()->SetColor(albedo[0], albedo[1], albedo[2]);
+    actor->GetProperty()->SetAmbient(0.0);
+    actor->GetProperty()->SetDiffuse(1.0);
+    actor->GetProperty()->SetSpecular(0.0);
+    renderer->AddActor(actor);
+  }
+  pass->SetProxies(proxies.Spheres);
+  pass->SetLighting(loaded.Lighting);
+  for (const auto& plane : proxies.Planes)
+  {
+    pass->AddBlockerPlane(plane.data(), plane.data() + 3, plane.data() + 6);
+  }
+  pass->SetSettings(settings);
+  pass->SetReceiverScale(o.ReceiverScale);
+  pass->SetExposure(o.Exposure > 0.0 ? o.Exposure : 1.0);
+  pass->MeasurePassTimesOn();
+  renderer->SetPass(pass);
+}
+
+// GPU mode after the first frame: the per-vertex radiance read back (the
+// error and the exposure need it), then one frame that recomputes GI timed.
+bool ReadBackGPU(vtkRenderWindow* window,
+  const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>& mappers,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, const SceneDescription& scene,
+  std::vector<vtkSmartPointer<vtkPolyData>>& shaded, double& exposure, double& frameSeconds)
+{
+  for (std::size_t k = 0; k < mappers.size(); ++k)
+  {
+    vtkNew<vtkFloatArray> radiance;
+    if (!mappers[k]->GetPerVertexResults(radiance))
+    {
+      std::fprintf(stderr, "proxygi render: the GPU GI pass did not run (%s)\n",
+        mappers[k]->GetGIStatus().c_str());
+      return false;
+    }
+    radiance->SetName("Radiance");
+    auto result = vtkSmartPointer<vtkPolyData>::New();
+    result->ShallowCopy(receivers[k]);
+    result->GetPointData()->AddArray(radiance);
+    shaded.push_back(result);
+    std::printf("gpu: object %zu (%s): %s\n", k, scene.Objects[k].Name.c_str(),
+      mappers[k]->GetGIStatus().c_str());
+  }
+  if (!(exposure > 0.0))
+  {
+    exposure = AutomaticExposure(shaded);
+  }
+  for (auto& mapper : mappers)
+  {
+    mapper->SetExposure(exposure);
+    mapper->AlwaysRecomputeOn();
+  }
+  const auto f0 = Clock::now();
+  window->Render();
+  window->WaitForCompletion();
+  frameSeconds = Seconds(f0, Clock::now());
+  for (auto& mapper : mappers)
+  {
+    mapper->AlwaysRecomputeOff();
+  }
+  return true;
+}
+
+// Image-space mode has no per-vertex radiance: the automatic exposure reads
+// the geometry pixels of a frame drawn at a low exposure (radiance up to 32
+// unclipped) back to radiance.
+double ExposureFromPicture(vtkRenderWindow* window, vtkPGIImageSpaceGIPass* pass)
+{
+  const double probe = 1.0 / 32.0;
+  pass->SetExposure(probe);
+  window->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  int* size = window->GetSize();
+  vtkNew<vtkFloatArray> depth;
+  window->GetZbufferData(0, 0, size[0] - 1, size[1] - 1, depth);
+  vtkDataArray* picture = grab->GetOutput()->GetPointData()->GetScalars();
+  std::vector<double> luminance;
+  for (vtkIdType i = 0; i < picture->GetNumberOfTuples() && i < depth->GetNumberOfTuples(); ++i)
+  {
+    if (depth->GetValue(i) < 1.0f)
+    {
+      double rgb[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb[c] = FromSRGB8(static_cast<unsigned char>(picture->GetComponent(i, c))) / probe;
+      }
+      luminance.push_back(Luminance(rgb[0], rgb[1], rgb[2]));
+    }
+  }
+  const double exposure = AutoExposure(luminance);
+  pass->SetExposure(exposure);
+  return exposure;
+}
+
+// Image-space mode: the first frame built shaders and tables; the second is timed per pass.
+double TimeImageSpace(vtkRenderWindow* window, vtkPGIImageSpaceGIPass* pass, int scale)
+{
+  window->Render();
+  std::printf("image space (receivers at 1/%d, bilateral upsampling): ", scale);
+  const char* names[] = { "receiver setup", "splatting", "exponentiation", "indirect",
+    "upsampling" };
+  double frame = 0.0;
+  for (int k = 0; k < 5; ++k)
+  {
+    const double ms = 1e3 * pass->GetPassTime(k);
+    frame += ms;
+    std::printf("%s %.1f ms, ", names[k], ms);
+  }
+  std::printf("frame %.1f ms\n", frame);
+  std::printf("image space: %s\n", pass->GetStatus().c_str());
+  return 1e-3 * frame;
+}
+
+} // namespace
+
+int RunRenderScene(const Args& args, const std::string& scenePath)
+{
+  RenderOptions o;
+  if (!ParseRenderOptions(args, o))
+  {
+    return 2;
+  }
+  SceneDescription scene = DefaultScene();
+  std::string error;
+  if (!scenePath.empty() && !LoadScene(scenePath, scene, error))
+  {
+    std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
+    return 1;
+  }
+  const std::string size = Option(args, "--size", "");
+  if (!size.empty() && std::sscanf(size.c_str(), "%dx%d", &scene.Size[0], &scene.Size[1]) != 2)
+  {
+    std::fprintf(stderr, "proxygi render: --size expects WxH\n");
+    return 2;
+  }
+  LoadedScene loaded;
+  if (!BuildScene(scene, loaded, error))
+  {
+    std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
+    return 1;
+  }
+  std::printf("scene: %s\n", scene.Name.c_str());
+
+  SceneProxies proxies;
+  if (!BuildSceneProxies(scene, loaded, o.Spheres, o.Cache, proxies, error))
+  {
+    std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
+    return 1;
+  }
+  const auto receiversIn = SceneReceivers(loaded);
+  vtkIdType receivers = 0;
+  for (auto& s : receiversIn)
+  {
+    receivers += s->GetNumberOfPoints();
+  }
+  vtkSmartPointer<vtkPGIGISettings> settings = MakeSettings(o, scene);
+  vtkSmartPointer<vtkPGIGISettings> effective = ReportSettings(settings, o, proxies, loaded);
+
+  // Shading: the CPU filter before rendering (vertex), or the GPU while rendering.
+  const auto t1 = Clock::now();
+  std::vector<vtkSmartPointer<vtkPolyData>> shaded;
+  if (o.Vertex())
+  {
+    shaded = ShadeOnCPU(receiversIn, settings, scene, loaded, proxies);
+  }
+  auto t2 = Clock::now();
+  double exposure = o.Exposure;
+  if (!(exposure > 0.0) && o.Vertex())
+  {
+    exposure = AutomaticExposure(shaded);
+  }
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0.3, 0.3, 0.32);
+  std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> giMappers;
+  vtkNew<vtkPGIImageSpaceGIPass> pass;
+  if (o.Gpu())
+  {
+    giMappers = AddGPUMappers(renderer, receiversIn, settings, loaded, proxies, exposure);
+  }
+  else if (o.ImageSpace())
+  {
+    AddImageSpacePass(renderer, pass, scene, receiversIn, settings, loaded, proxies, o);
+  }
+  else
+  {
+    AddVertexColourActors(renderer, shaded, exposure);
+  }
   renderer->SetActiveCamera(loaded.Camera);
   renderer->ResetCameraClippingRange();
   // EGL without a display, the X server's window with one (Xvfb included).
@@ -289,80 +519,44 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   window->SetSize(scene.Size[0], scene.Size[1]);
   window->AddRenderer(renderer);
   window->Render();
-  if (gpu)
+  double giFrame = 0.0;
+  if (o.Gpu())
   {
-    // The first frame compiled the shaders and ran the GI pass; read the
-    // per-vertex radiance back (the error and the exposure need it), then
-    // time one frame that recomputes GI (as moving proxies would).
     window->WaitForCompletion();
     t2 = Clock::now();
-    for (std::size_t k = 0; k < giMappers.size(); ++k)
+    if (!ReadBackGPU(window, giMappers, receiversIn, scene, shaded, exposure, giFrame))
     {
-      vtkNew<vtkFloatArray> radiance;
-      if (!giMappers[k]->GetPerVertexResults(radiance))
-      {
-        std::fprintf(stderr, "proxygi render: the GPU GI pass did not run (%s)\n",
-          giMappers[k]->GetGIStatus().c_str());
-        return 1;
-      }
-      radiance->SetName("Radiance");
-      auto result = vtkSmartPointer<vtkPolyData>::New();
-      result->ShallowCopy(receiversIn[k]);
-      result->GetPointData()->AddArray(radiance);
-      shaded.push_back(result);
-      std::printf("gpu: object %zu (%s): %s\n", k, scene.Objects[k].Name.c_str(),
-        giMappers[k]->GetGIStatus().c_str());
-    }
-    if (!(exposure > 0.0))
-    {
-      exposure = automaticExposure();
-    }
-    for (auto& mapper : giMappers)
-    {
-      mapper->SetExposure(exposure);
-      mapper->AlwaysRecomputeOn();
-    }
-    const auto f0 = Clock::now();
-    window->Render();
-    window->WaitForCompletion();
-    const auto f1 = Clock::now();
-    for (auto& mapper : giMappers)
-    {
-      mapper->AlwaysRecomputeOff();
+      return 1;
     }
     std::printf("gpu per-vertex GI: first frame %.3f s (shaders, tables, spherical lights' first "
                 "pass, GI pass), a frame that recomputes GI %.1f ms\n",
-      Seconds(t1, t2), 1e3 * Seconds(f0, f1));
+      Seconds(t1, t2), 1e3 * giFrame);
   }
-  if (imageSpace)
+  if (o.ImageSpace())
   {
-    window->Render(); // the first frame builds shaders and tables
-    std::printf("image space (receivers at 1/%d, bilateral upsampling): ", receiverScale);
-    const char* names[] = { "receiver setup", "splatting", "exponentiation", "indirect",
-      "upsampling" };
-    double frame = 0.0;
-    for (int k = 0; k < 5; ++k)
+    if (!(exposure > 0.0))
     {
-      const double ms = 1e3 * pass->GetPassTime(k);
-      frame += ms;
-      std::printf("%s %.1f ms, ", names[k], ms);
+      exposure = ExposureFromPicture(window, pass);
     }
-    std::printf("frame %.1f ms\n", frame);
+    giFrame = TimeImageSpace(window, pass, o.ReceiverScale);
+    t2 = Clock::now();
   }
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->SetInputBufferTypeToRGB();
   grab->ReadFrontBufferOff();
   vtkNew<vtkPNGWriter> png;
-  png->SetFileName(output.c_str());
+  png->SetFileName(o.Output.c_str());
   png->SetInputConnection(grab->GetOutputPort());
   png->Write();
   const auto t3 = Clock::now();
   std::printf("window: %s\n", DescribeRenderWindowContext(window).c_str());
+  const int pixelSpp = o.PixelSpp;
+  const std::string& cache = o.Cache;
 
   // Per pixel against Embree's image of the same view (cached): both
   // pictures decoded from sRGB, geometry pixels unsaturated in both.
-  if ((imageSpace || Flag(args, "--pixel-error")) && !Flag(args, "--no-error"))
+  if (o.PixelError && !o.NoError)
   {
     const std::string cachedImage = cache + "/image-" +
       std::to_string(std::hash<std::string>()(
@@ -394,10 +588,9 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       writer->SetInputData(truth);
       writer->Write();
     }
-    const std::string referencePNG = Option(args, "--reference-png", "");
-    if (!referencePNG.empty() && WriteTonemappedPNG(truth, exposure, referencePNG))
+    if (!o.ReferencePNG.empty() && WriteTonemappedPNG(truth, exposure, o.ReferencePNG))
     {
-      std::printf("wrote %s (Embree's image, same exposure)\n", referencePNG.c_str());
+      std::printf("wrote %s (Embree's image, same exposure)\n", o.ReferencePNG.c_str());
     }
     vtkNew<vtkFloatArray> depth;
     window->GetZbufferData(0, 0, scene.Size[0] - 1, scene.Size[1] - 1, depth);
@@ -440,23 +633,40 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       ref > 0 ? 100 * std::sqrt(sq / ref) : 0.0, used);
   }
 
-  for (std::size_t k = 0; !vtpPrefix.empty() && k < shaded.size(); ++k)
+  for (std::size_t k = 0; !o.Vtp.empty() && k < shaded.size(); ++k)
   {
     vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName((vtpPrefix + "-" + scene.Objects[k].Name + ".vtp").c_str());
+    writer->SetFileName((o.Vtp + "-" + scene.Objects[k].Name + ".vtp").c_str());
     writer->SetInputData(shaded[k]);
     writer->SetDataModeToAppended();
     writer->Write();
   }
-  std::printf("settings: SH order %d, exp %s, %lld proxy spheres, %zu planes, %lld receivers\n",
-    order, methodName.c_str(), static_cast<long long>(proxies.Leaves), proxies.Planes.size(),
+  // What ran (the effective settings of this mode's backend).
+  std::printf("settings: mode %s, SH order %d, exp %s, indirect %s, %lld proxy spheres, %zu "
+              "planes, %lld receivers\n",
+    o.Mode.c_str(), effective->GetOrder(),
+    vtkPGIGISettings::ExpMethodName(effective->GetExpMethod()),
+    !effective->GetIndirect() ? "off"
+                              : vtkPGIGISettings::IndirectModeName(effective->GetIndirectMode()),
+    static_cast<long long>(proxies.Leaves), proxies.Planes.size(),
     static_cast<long long>(receivers));
-  std::printf("time: proxies %.2f s%s, SH shading %.3f s (%.0f ns per receiver), render %.3f s\n",
-    proxies.Seconds, proxies.Cached ? " (cached)" : "", Seconds(t1, t2),
-    1e9 * Seconds(t1, t2) / std::max<vtkIdType>(1, receivers), Seconds(t2, t3));
+  if (o.ImageSpace())
+  {
+    std::printf("time: proxies %.2f s%s, image-space GI frame %.1f ms, first frame and picture "
+                "%.3f s\n",
+      proxies.Seconds, proxies.Cached ? " (cached)" : "", 1e3 * giFrame, Seconds(t1, t3));
+  }
+  else
+  {
+    std::printf("time: proxies %.2f s%s, SH shading %.3f s (%.0f ns per receiver), render %.3f s\n",
+      proxies.Seconds, proxies.Cached ? " (cached)" : "", Seconds(t1, t2),
+      1e9 * Seconds(t1, t2) / std::max<vtkIdType>(1, receivers), Seconds(t2, t3));
+  }
 
   // Error against the Embree reference (per vertex, cached).
-  if (!Flag(args, "--no-error"))
+  const bool gpu = o.Gpu();
+  const int referenceSpp = o.ReferenceSpp;
+  if (!o.NoError && !o.ImageSpace())
   {
     double seconds = 0.0;
     const auto reference =
@@ -491,7 +701,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
                 "objects)\n",
       100 * RelativeRMSE(shaded, "Radiance", reference, "Radiance"));
   }
-  std::printf("wrote %s (exposure %.3g)\n", output.c_str(), exposure);
+  std::printf("wrote %s (exposure %.3g)\n", o.Output.c_str(), exposure);
   return 0;
 }
 

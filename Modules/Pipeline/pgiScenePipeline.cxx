@@ -1,5 +1,6 @@
 #include "pgiScenePipeline.h"
 
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 #include "vtkPGIReferenceIllumination.h"
@@ -256,9 +257,14 @@ void ConfigureGlobalIllumination(vtkPGIGlobalIllumination* gi, const SceneDescri
   {
     gi->AddBlockerPlane(p.data(), p.data() + 3, p.data() + 6);
   }
-  gi->SetShadows(scene.Shadows);
-  gi->SetIndirect(scene.Indirect);
-  gi->SetLocalLights(scene.LocalLights);
+  ConfigureSettings(gi->GetSettings(), scene);
+}
+
+void ConfigureSettings(vtkPGIGISettings* settings, const SceneDescription& scene)
+{
+  settings->SetShadows(scene.Shadows);
+  settings->SetIndirect(scene.Indirect);
+  settings->SetLocalLights(scene.LocalLights);
 }
 
 std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(const SceneDescription& scene,

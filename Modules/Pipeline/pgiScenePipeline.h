@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+class vtkPGIGISettings;
 class vtkPGIGlobalIllumination;
 class vtkPolyData;
 
@@ -39,15 +40,20 @@ struct SceneProxies
 /// Proxies of a loaded scene, `spheresPerMesh` per mesh; the sets are cached
 /// in `cacheDir` (created if missing; "" = no cache). False with a message.
 PROXYGIPIPELINE_EXPORT bool BuildSceneProxies(const SceneDescription& scene,
-  const LoadedScene& loaded, int spheresPerMesh, const std::string& cacheDir,
-  SceneProxies& proxies, std::string& error);
+  const LoadedScene& loaded, int spheresPerMesh, const std::string& cacheDir, SceneProxies& proxies,
+  std::string& error);
 
 /// The receivers of a scene: every object with point normals (unsplit).
 PROXYGIPIPELINE_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(
   const LoadedScene& loaded);
 
-/// Sets the filter's lighting, proxies, planes and the scene's effect
-/// switches; knobs (order, method, ...) are left to the caller.
+/// The scene's effect switches (shadows, indirect, local lights) on GI
+/// settings; the knobs (order, method, ...) are left to the caller.
+PROXYGIPIPELINE_EXPORT void ConfigureSettings(
+  vtkPGIGISettings* settings, const SceneDescription& scene);
+
+/// Sets the filter's lighting, proxies, planes and (ConfigureSettings) the
+/// scene's effect switches on its settings.
 PROXYGIPIPELINE_EXPORT void ConfigureGlobalIllumination(vtkPGIGlobalIllumination* gi,
   const SceneDescription& scene, const LoadedScene& loaded, const SceneProxies& proxies);
 
@@ -63,9 +69,8 @@ PROXYGIPIPELINE_EXPORT void ConfigureGlobalIllumination(vtkPGIGlobalIllumination
  */
 PROXYGIPIPELINE_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(
   const SceneDescription& scene, const LoadedScene& loaded,
-  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, int spp,
-  const std::string& cacheDir, const SceneProxies* proxies, double& seconds, std::string& error,
-  unsigned int seed = 1);
+  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, int spp, const std::string& cacheDir,
+  const SceneProxies* proxies, double& seconds, std::string& error, unsigned int seed = 1);
 
 /// Relative RMSE sqrt(sum |a-b|^2 / sum |b|^2) of two RGB point arrays over
 /// the given objects (all when `objects` is empty); 0 when b is all zero.

@@ -5,8 +5,11 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
+#include "vtkSMPTools.h"
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -27,6 +30,68 @@ double Distance2(const double* a, const double* b)
   return dx * dx + dy * dy + dz * dz;
 }
 
+} // namespace
+
+std::vector<int> LloydClusters(
+  const double* points, vtkIdType n, std::vector<std::array<double, 3>>& centres, int iterations)
+{
+  const int k = static_cast<int>(centres.size());
+  std::vector<int> assign(n, -1);
+  for (int iteration = 0; iteration < iterations && k > 0; ++iteration)
+  {
+    std::atomic<bool> changed(false);
+    vtkSMPTools::For(0, n,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        bool mine = false;
+        for (vtkIdType i = first; i < last; ++i)
+        {
+          int best = 0;
+          double bestD = std::numeric_limits<double>::max();
+          for (int c = 0; c < k; ++c)
+          {
+            const double d = Distance2(points + 3 * i, centres[c].data());
+            if (d < bestD)
+            {
+              bestD = d;
+              best = c;
+            }
+          }
+          mine = mine || assign[i] != best;
+          assign[i] = best;
+        }
+        if (mine)
+        {
+          changed = true;
+        }
+      });
+    if (!changed)
+    {
+      break;
+    }
+    std::vector<std::array<double, 3>> sum(k, { 0.0, 0.0, 0.0 });
+    std::vector<vtkIdType> count(k, 0);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      for (int q = 0; q < 3; ++q)
+      {
+        sum[assign[i]][q] += points[3 * i + q];
+      }
+      ++count[assign[i]];
+    }
+    for (int c = 0; c < k; ++c)
+    {
+      for (int q = 0; count[c] > 0 && q < 3; ++q)
+      {
+        centres[c][q] = sum[c][q] / count[c];
+      }
+    }
+  }
+  return assign;
+}
+
+namespace
+{
 // Lloyd clustering of sphere centres into k groups (k-means++ seeds).
 std::vector<int> ClusterCenters(const std::vector<Sphere>& s, int k, std::mt19937& rng)
 {
@@ -59,53 +124,12 @@ std::vector<int> ClusterCenters(const std::vector<Sphere>& s, int k, std::mt1993
       }
     }
   }
-  k = static_cast<int>(centers.size());
-  std::vector<int> assign(n, -1);
-  for (int iteration = 0; iteration < 50; ++iteration)
+  std::vector<double> points(3 * static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
   {
-    bool changed = false;
-    for (int i = 0; i < n; ++i)
-    {
-      int best = 0;
-      double bestD = std::numeric_limits<double>::max();
-      for (int c = 0; c < k; ++c)
-      {
-        const double d = Distance2(s[i].Center, centers[c].data());
-        if (d < bestD)
-        {
-          bestD = d;
-          best = c;
-        }
-      }
-      changed = changed || assign[i] != best;
-      assign[i] = best;
-    }
-    if (!changed)
-    {
-      break;
-    }
-    std::vector<std::array<double, 3>> sum(k, { 0.0, 0.0, 0.0 });
-    std::vector<int> count(k, 0);
-    for (int i = 0; i < n; ++i)
-    {
-      for (int q = 0; q < 3; ++q)
-      {
-        sum[assign[i]][q] += s[i].Center[q];
-      }
-      ++count[assign[i]];
-    }
-    for (int c = 0; c < k; ++c)
-    {
-      if (count[c] > 0)
-      {
-        for (int q = 0; q < 3; ++q)
-        {
-          centers[c][q] = sum[c][q] / count[c];
-        }
-      }
-    }
+    std::copy(s[i].Center, s[i].Center + 3, &points[3 * static_cast<std::size_t>(i)]);
   }
-  return assign;
+  return LloydClusters(points.data(), n, centers, 50);
 }
 
 // Evens out Lloyd's clusters: a lone member joins the nearest other cluster,

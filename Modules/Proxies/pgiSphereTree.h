@@ -17,6 +17,9 @@
 #include "ProxyGIProxiesModule.h"
 #include "pgiSphereMath.h"
 
+#include "vtkType.h"
+
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -63,6 +66,17 @@ PROXYGIPROXIES_EXPORT bool GetSphereTree(vtkPolyData* proxies, std::vector<Spher
 /// Writes centres and radii back (same number of points; arrays modified).
 PROXYGIPROXIES_EXPORT void SetSphereGeometry(
   vtkPolyData* proxies, const std::vector<Sphere>& nodes);
+
+/**
+ * Lloyd's algorithm on `n` points (x, y, z each) from the given initial
+ * centres: assign every point to its nearest centre, move each centre to
+ * its members' mean, up to `iterations` times or until nothing moves.
+ * Returns each point's cluster; `centres` end as the clusters' means. The
+ * sphere tree (seeded k-means++) and the GI filter's receiver clusters
+ * (seeded evenly along the point order) both run it.
+ */
+PROXYGIPROXIES_EXPORT std::vector<int> LloydClusters(
+  const double* points, vtkIdType n, std::vector<std::array<double, 3>>& centres, int iterations);
 
 /// Depth, branching and the bounding check.
 PROXYGIPROXIES_EXPORT SphereTreeStats AnalyseSphereTree(const std::vector<Sphere>& nodes,

@@ -14,7 +14,9 @@
 #include "pgiSHTables.h"
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
+#include "pgiSoftShadows.h"
 #include "pgiSphericalLights.h"
+#include "vtkPGIGISettings.h"
 
 #include "vtkDataArray.h"
 #include "vtkNew.h"
@@ -74,59 +76,47 @@ vtkSmartPointer<vtkTextureObject> FloatTexture(
 }
 } // namespace
 
-bool ReadProxies(vtkPolyData* proxies, std::vector<float>& spheres, std::string& error)
+std::vector<float> PackSpheres(const Blockers& blockers)
 {
-  spheres.clear();
-  if (!proxies || proxies->GetNumberOfPoints() == 0)
+  std::vector<float> spheres;
+  spheres.reserve(4 * blockers.Spheres());
+  for (std::size_t i = 0; i < blockers.Spheres(); ++i)
   {
-    return true;
+    spheres.insert(spheres.end(), { blockers.X[i], blockers.Y[i], blockers.Z[i], blockers.R[i] });
   }
-  vtkDataArray* radius = proxies->GetPointData()->GetArray("Radius");
-  if (!radius)
-  {
-    error = "the proxies need a \"Radius\" point array";
-    return false;
-  }
-  vtkDataArray* level = proxies->GetPointData()->GetArray("Level");
-  for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
-  {
-    double c[3];
-    proxies->GetPoint(i, c);
-    const double r = radius->GetTuple1(i);
-    if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]) || !std::isfinite(r) ||
-      r < 0.0)
-    {
-      std::ostringstream m;
-      m << "proxy " << i << " has a NaN, Inf or negative centre or radius";
-      error = m.str();
-      spheres.clear();
-      return false;
-    }
-    if (level && level->GetTuple1(i) != 0.0)
-    {
-      continue;
-    }
-    spheres.insert(spheres.end(), { float(c[0]), float(c[1]), float(c[2]), float(r) });
-  }
-  return true;
+  return spheres;
 }
 
-void UploadProxyAlbedos(vtkOpenGLRenderWindow* window, vtkPolyData* proxies, int leaves,
-  const char* arrayName, const double fallback[3], std::vector<float>& texels,
-  vtkSmartPointer<vtkTextureObject>& texture)
+std::vector<float> PackPlanes(const Blockers& blockers)
+{
+  std::vector<float> planes;
+  for (std::size_t k = 0; k < blockers.Planes(); ++k)
+  {
+    planes.insert(planes.end(), &blockers.PlaneOrigin[3 * k], &blockers.PlaneOrigin[3 * k] + 3);
+    planes.insert(planes.end(), &blockers.PlaneNormal[3 * k], &blockers.PlaneNormal[3 * k] + 3);
+  }
+  return planes;
+}
+
+std::vector<float> PackPlaneAlbedos(const Blockers& blockers)
+{
+  std::vector<float> albedos(3 * MaxPlanes, 0.0f);
+  const std::size_t count = std::min(albedos.size(), blockers.PlaneAlbedo.size());
+  std::copy_n(blockers.PlaneAlbedo.begin(), count, albedos.begin());
+  return albedos;
+}
+
+void UploadProxyAlbedos(vtkOpenGLRenderWindow* window, const Blockers& blockers,
+  std::vector<float>& texels, vtkSmartPointer<vtkTextureObject>& texture)
 {
   texels.clear();
-  vtkDataArray* level = proxies ? proxies->GetPointData()->GetArray("Level") : nullptr;
-  const vtkIdType count = leaves == 0 || !proxies ? 0 : proxies->GetNumberOfPoints();
-  for (vtkIdType i = 0; i < count; ++i)
+  const int leaves = static_cast<int>(blockers.Spheres());
+  for (int i = 0; i < leaves; ++i)
   {
-    if (level && level->GetTuple1(i) != 0.0)
-    {
-      continue;
-    }
-    double albedo[3];
-    AlbedoOf(proxies, arrayName, i, fallback, albedo);
-    texels.insert(texels.end(), { float(albedo[0]), float(albedo[1]), float(albedo[2]), 1.0f });
+    const float* a = blockers.Albedo.size() >= 3 * static_cast<std::size_t>(leaves)
+      ? &blockers.Albedo[3 * i]
+      : nullptr;
+    texels.insert(texels.end(), { a ? a[0] : 0.0f, a ? a[1] : 0.0f, a ? a[2] : 0.0f, 1.0f });
   }
   const int width = std::max(1, std::min(leaves, 1024));
   const int rows = std::max(1, (leaves + width - 1) / width);
@@ -136,6 +126,16 @@ void UploadProxyAlbedos(vtkOpenGLRenderWindow* window, vtkPolyData* proxies, int
     texture->ReleaseGraphicsResources(window);
   }
   texture = FloatTexture(window, width, rows, 4, texels);
+}
+
+KernelSettings KernelSettingsOf(vtkPGIGISettings* settings)
+{
+  KernelSettings k;
+  k.MinBlockerAngle = settings->GetMinBlockerAngle();
+  k.SelfShadowRules = settings->GetSelfShadowRules();
+  k.HybridMaxNorm = settings->GetHybridMaxNorm();
+  k.RangeTolerance = settings->GetRangeTolerance();
+  return k;
 }
 
 std::string SquareSource(int order)

@@ -43,6 +43,7 @@
 #include <vector>
 
 class vtkOpenGLRenderWindow;
+class vtkPGIGISettings;
 class vtkPolyData;
 class vtkShaderProgram;
 class vtkTextureObject;
@@ -50,6 +51,7 @@ class vtkWindow;
 
 namespace proxygi
 {
+struct Blockers;
 struct SphericalLights;
 namespace gpu
 {
@@ -60,24 +62,20 @@ constexpr int MaxOrder = 6;
 /// Infinite blocker planes the kernel takes.
 constexpr int MaxPlanes = 8;
 
-/**
- * Proxies as the CPU filter reads them: x, y, z, r per sphere, Level 0 only
- * when a "Level" array is present. False (and no spheres) on a missing
- * "Radius" array or NaN/Inf/negative values, with the reason in `error`.
- */
-PROXYGIRENDERING_EXPORT bool ReadProxies(
-  vtkPolyData* proxies, std::vector<float>& spheres, std::string& error);
+/// The bake's leaf spheres as the kernel reads them: x, y, z, r each.
+PROXYGIRENDERING_EXPORT std::vector<float> PackSpheres(const Blockers& blockers);
+/// The bake's planes as the kernel reads them: origin, unit normal (6 each).
+PROXYGIRENDERING_EXPORT std::vector<float> PackPlanes(const Blockers& blockers);
+/// The planes' albedo as the pgiPlaneAlbedo uniform (MaxPlanes RGB, zero-padded).
+PROXYGIRENDERING_EXPORT std::vector<float> PackPlaneAlbedos(const Blockers& blockers);
 
 /**
- * The leaf proxies' albedo (Level 0 only; `arrayName` read as the filter
- * reads it, else `fallback`) as RGBA texels laid out as GIResources lays
- * out the spheres (rows of up to 1024), kept in `texels` and uploaded as a
- * float texture that replaces `texture`. `leaves`: how many spheres
- * ReadProxies gave (0: none are read).
+ * The leaf spheres' albedo (the bake's, 3 per sphere) as RGBA texels laid
+ * out as GIResources lays out the spheres (rows of up to 1024), kept in
+ * `texels` and uploaded as a float texture that replaces `texture`.
  */
-PROXYGIRENDERING_EXPORT void UploadProxyAlbedos(vtkOpenGLRenderWindow* window, vtkPolyData* proxies,
-  int leaves, const char* arrayName, const double fallback[3], std::vector<float>& texels,
-  vtkSmartPointer<vtkTextureObject>& texture);
+PROXYGIRENDERING_EXPORT void UploadProxyAlbedos(vtkOpenGLRenderWindow* window,
+  const Blockers& blockers, std::vector<float>& texels, vtkSmartPointer<vtkTextureObject>& texture);
 
 /// The indirect-light GLSL (pgiISLibrary.glsl: pgiProxyIndirectTerm,
 /// pgiResolveIndirect and their uniforms), to go after LibrarySource.
@@ -105,6 +103,9 @@ struct KernelSettings
   /// Range guard tolerance of sh::Exp; < 0 switches the guard off.
   double RangeTolerance = 0.5;
 };
+
+/// The kernel's uniforms from (effective) settings: one fill for both GPU consumers.
+PROXYGIRENDERING_EXPORT KernelSettings KernelSettingsOf(vtkPGIGISettings* settings);
 
 /**
  * Tables, light and blockers on the GPU for one order: the cap log-visibility,

@@ -17,8 +17,10 @@
 #include "vtkPGILighting.h"
 
 #include "vtkActor.h"
+#include "vtkAlgorithmOutput.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
+#include "vtkInformation.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -46,7 +48,6 @@
 #include <sstream>
 
 vtkStandardNewMacro(vtkPGIGIPolyDataMapper);
-vtkCxxSetObjectMacro(vtkPGIGIPolyDataMapper, Proxies, vtkPolyData);
 vtkCxxSetObjectMacro(vtkPGIGIPolyDataMapper, Lighting, vtkPGILighting);
 
 struct vtkPGIGIPolyDataMapper::Internals
@@ -63,28 +64,21 @@ struct vtkPGIGIPolyDataMapper::Internals
   int ResultFloats = 0; // per point
   bool HaveResults = false;
   // What the last GI pass used, to skip it when nothing changed.
-  vtkMTimeType InputTime = 0, ProxiesTime = 0, LightingTime = 0;
-  std::string Settings; // the knobs GI depends on (exposure & co. do not count)
-  std::string AlbedoArray;
+  vtkMTimeType InputTime = 0, BakeUploaded = 0, SettingsTime = 0;
+  int BakeBuilds = -1;
+  std::string AlbedoKey; // the receivers' albedo knobs
   vtkPolyData* Input = nullptr;
   std::array<double, 16> Matrix{};
-  int LightOrder = 0;
-  std::vector<float> Spheres;
-  int ProxyCount = 0;
+  int UploadedOrder = 0;
+  int ProxyCount = 0, PlaneCount = 0;
   int ProgramHandle = 0;
   bool GIInShaders = false;
-  // Planes carried by the light: their visibility (for xi); indirect: the
-  // secondary lights' response (interleaved RGB), proxies' albedo texture.
+  // From the bake, as the GLSL reads them.
   bool PlanesInLight = false;
-  std::vector<float> PlaneVisibility;
-  std::vector<float> Response;
-  std::vector<float> Albedos;
+  std::vector<float> PlaneVisibility, Response, Albedos, PlaneAlbedos;
   vtkSmartPointer<vtkTextureObject> ProxyAlbedo;
-  // Local lights: centre and radius (-1: point light), radiance; 4 floats each.
+  // Local lights: centre and radius (-1: point light), radiance.
   std::vector<float> LocalLights, LocalRadiance;
-  // The light the proxies' samples see (L, or the light above the planes),
-  // per channel, for the shadowed bounce's first pass; what it did.
-  std::vector<double> SampleLight;
   int SphericalLightCount = 0;
   std::string SphericalLightSummary;
   bool WarnedBudget = false;
@@ -94,54 +88,106 @@ struct vtkPGIGIPolyDataMapper::Internals
 vtkPGIGIPolyDataMapper::vtkPGIGIPolyDataMapper()
   : GPU(new Internals)
 {
-  this->SetAlbedoArrayName("Albedo");
-  this->SetProxyAlbedoArrayName("Albedo");
+  this->SetNumberOfInputPorts(2);
+  this->Settings = vtkPGIGISettings::New();
+  this->Bake->SetSettings(this->Effective);
 }
 
 vtkPGIGIPolyDataMapper::~vtkPGIGIPolyDataMapper()
 {
-  this->SetProxies(nullptr);
   this->SetLighting(nullptr);
-  this->SetAlbedoArrayName(nullptr);
-  this->SetProxyAlbedoArrayName(nullptr);
+  this->Settings->UnRegister(this);
+}
+
+int vtkPGIGIPolyDataMapper::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    return 1;
+  }
+  return this->Superclass::FillInputPortInformation(port, info);
+}
+
+void vtkPGIGIPolyDataMapper::SetProxies(vtkPolyData* proxies)
+{
+  this->SetInputDataObject(1, proxies);
+}
+
+vtkPolyData* vtkPGIGIPolyDataMapper::GetProxies()
+{
+  if (this->GetNumberOfInputConnections(1) == 0)
+  {
+    return nullptr;
+  }
+  // The mapper's render updates port 0 only: bring the proxies' pipeline
+  // up to date here, so a change upstream re-executes it.
+  vtkAlgorithmOutput* connection = this->GetInputConnection(1, 0);
+  if (connection && connection->GetProducer())
+  {
+    connection->GetProducer()->Update(connection->GetIndex());
+  }
+  return vtkPolyData::SafeDownCast(this->GetInputDataObject(1, 0));
+}
+
+void vtkPGIGIPolyDataMapper::SetSettings(vtkPGIGISettings* settings)
+{
+  vtkSmartPointer<vtkPGIGISettings> next = settings;
+  if (!next)
+  {
+    next = vtkSmartPointer<vtkPGIGISettings>::New();
+  }
+  if (next == this->Settings)
+  {
+    return;
+  }
+  this->Settings->UnRegister(this);
+  this->Settings = next;
+  this->Settings->Register(this);
+  this->Modified();
+}
+
+const vtkPGIGISettings::Support& vtkPGIGIPolyDataMapper::GetSupport()
+{
+  static const vtkPGIGISettings::Support support = []
+  {
+    vtkPGIGISettings::Support s;
+    s.Backend = "GPU mapper";
+    s.MinOrder = proxygi::gpu::MinOrder;
+    s.MaxOrder = proxygi::gpu::MaxOrder;
+    s.ExpMethods = 1u << vtkPGIGISettings::EXP_HYB;
+    s.ExpDegree = false;
+    s.AccumulationOrder = false;
+    s.WindowSize = false;
+    s.ShadingPaths = 1u << vtkPGIGISettings::SHADING_PRODUCT_MATRIX;
+    s.Hierarchy = false;
+    s.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
+    return s;
+  }();
+  return support;
+}
+
+vtkMTimeType vtkPGIGIPolyDataMapper::GetMTime()
+{
+  vtkMTimeType t = std::max(this->Superclass::GetMTime(), this->Settings->GetMTime());
+  return this->Lighting ? std::max(t, this->Lighting->GetMTime()) : t;
 }
 
 void vtkPGIGIPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Proxies: " << this->Proxies << "\n";
+  os << indent << "Proxies: " << this->GetProxies() << "\n";
   os << indent << "Lighting: " << this->Lighting << "\n";
-  os << indent << "BlockerPlanes: " << this->BlockerPlanes.size() / 6 << "\n";
+  os << indent << "BlockerPlanes: " << this->Bake->GetNumberOfBlockerPlanes() << "\n";
+  os << indent << "Settings:\n";
+  this->Settings->PrintSelf(os, indent.GetNextIndent());
   os << indent << "GlobalIllumination: " << this->GlobalIllumination << "\n";
-  os << indent << "Shadows: " << this->Shadows << "\n";
-  os << indent << "Order: " << this->Order << "\n";
-  os << indent << "Albedo: " << this->Albedo[0] << " " << this->Albedo[1] << " " << this->Albedo[2]
-     << "\n";
-  os << indent << "AlbedoArrayName: " << (this->AlbedoArrayName ? this->AlbedoArrayName : "(none)")
-     << "\n";
-  os << indent << "SelfShadowRules: " << this->SelfShadowRules << "\n";
-  os << indent << "MinBlockerAngle: " << this->MinBlockerAngle << "\n";
-  os << indent << "HybridMaxNorm: " << this->HybridMaxNorm << "\n";
-  os << indent << "RangeTolerance: " << this->RangeTolerance << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "SRGBOutput: " << this->SRGBOutput << "\n";
   os << indent << "CombineWithVTKLighting: " << this->CombineWithVTKLighting << "\n";
   os << indent << "CaptureVisibility: " << this->CaptureVisibility << "\n";
   os << indent << "AlwaysRecompute: " << this->AlwaysRecompute << "\n";
-  os << indent << "PlaneBlocking: "
-     << (this->PlaneBlocking == PLANES_IN_LIGHT ? "PLANES_IN_LIGHT" : "PLANES_IN_LOG_SPACE")
-     << "\n";
-  os << indent << "Indirect: " << this->Indirect << "\n";
-  os << indent << "IndirectMode: "
-     << (this->IndirectMode == INDIRECT_MODE_SHADOWED ? "SHADOWED" : "UNSHADOWED") << "\n";
-  os << indent << "SphericalLightBlocking: "
-     << (this->SphericalLightBlocking == BLOCKING_PER_OBJECT ? "PER_OBJECT" : "PER_SPHERE") << "\n";
-  os << indent << "PlaneBounceShadows: " << this->PlaneBounceShadows << "\n";
-  os << indent << "LocalLights: " << this->LocalLights << "\n";
-  os << indent << "DefaultProxyAlbedo: " << this->DefaultProxyAlbedo[0] << " "
-     << this->DefaultProxyAlbedo[1] << " " << this->DefaultProxyAlbedo[2] << "\n";
-  os << indent << "ProxyAlbedoArrayName: "
-     << (this->ProxyAlbedoArrayName ? this->ProxyAlbedoArrayName : "(none)") << "\n";
   os << indent << "NumberOfGIUpdates: " << this->NumberOfGIUpdates << "\n";
   os << indent << "GIStatus: " << this->GIStatus << "\n";
 }
@@ -155,26 +201,18 @@ void vtkPGIGIPolyDataMapper::AddBlockerPlane(const double origin[3], const doubl
 void vtkPGIGIPolyDataMapper::AddBlockerPlane(
   const double origin[3], const double normal[3], const double albedo[3])
 {
-  if (this->BlockerPlanes.size() / 6 >= static_cast<std::size_t>(proxygi::gpu::MaxPlanes))
+  if (this->Bake->GetNumberOfBlockerPlanes() >= proxygi::gpu::MaxPlanes)
   {
     vtkErrorMacro("At most " << proxygi::gpu::MaxPlanes << " blocker planes.");
     return;
   }
-  const double len =
-    std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
-  this->BlockerPlanes.insert(this->BlockerPlanes.end(), origin, origin + 3);
-  for (int k = 0; k < 3; ++k)
-  {
-    this->BlockerPlanes.push_back(len > 0.0 ? normal[k] / len : (k == 2 ? 1.0 : 0.0));
-  }
-  this->PlaneAlbedos.insert(this->PlaneAlbedos.end(), albedo, albedo + 3);
+  this->Bake->AddBlockerPlane(origin, normal, albedo);
   this->Modified();
 }
 
 void vtkPGIGIPolyDataMapper::RemoveAllBlockerPlanes()
 {
-  this->BlockerPlanes.clear();
-  this->PlaneAlbedos.clear();
+  this->Bake->RemoveAllBlockerPlanes();
   this->Modified();
 }
 
@@ -196,8 +234,8 @@ void vtkPGIGIPolyDataMapper::ReleaseGraphicsResources(vtkWindow* window)
   }
   g.Window = nullptr;
   g.Input = nullptr;
-  g.LightOrder = 0;
-  g.Settings.clear();
+  g.UploadedOrder = 0;
+  g.BakeBuilds = -1;
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -224,372 +262,166 @@ vtkTransformFeedback* SharedCapture(int visibilityVec4s)
 }
 } // namespace
 
-bool vtkPGIGIPolyDataMapper::UpdateSphericalLights(vtkPGILighting* lighting)
+bool vtkPGIGIPolyDataMapper::PrepareBake(std::ostringstream& why)
 {
   Internals& g = *this->GPU;
-  const int order = this->Order, n2 = order * order;
-  // What shadows the samples: the leaf proxies and the planes, as in the filter.
-  proxygi::Blockers blockers;
-  std::vector<vtkIdType> leafIds;
-  vtkDataArray* level = this->Proxies ? this->Proxies->GetPointData()->GetArray("Level") : nullptr;
-  const vtkIdType proxies = g.ProxyCount > 0 ? this->Proxies->GetNumberOfPoints() : 0;
-  for (vtkIdType i = 0, leaf = 0; i < proxies; ++i)
+  std::vector<std::string> notes;
+  this->Settings->Resolve(
+    GetSupport(), this->Bake->GetNumberOfBlockerPlanes(), this->Effective, notes);
+  if (notes != this->SettingsNotes)
   {
-    if (level && level->GetTuple1(i) != 0.0)
+    for (const std::string& note : notes)
     {
-      continue;
+      vtkWarningMacro(<< "Not honoured: " << note << ".");
     }
-    const float* s = &g.Spheres[4 * leaf];
-    blockers.AddSphere(s[0], s[1], s[2], s[3], &g.Albedos[4 * leaf]);
-    leafIds.push_back(i);
-    ++leaf;
+    this->SettingsNotes = notes;
   }
-  for (std::size_t k = 0; 6 * k < this->BlockerPlanes.size(); ++k)
+  this->Bake->SetProxies(this->GetProxies());
+  this->Bake->SetLighting(this->Lighting);
+  const int builds = this->Bake->GetNumberOfBuilds();
+  const bool ok = this->Bake->Update();
+  const bool rebuilt = this->Bake->GetNumberOfBuilds() != builds;
+  if (!ok && this->Bake->GetProxyError().empty())
   {
-    float v[9];
-    for (int q = 0; q < 6; ++q)
+    if (rebuilt)
     {
-      v[q] = static_cast<float>(this->BlockerPlanes[6 * k + q]);
+      vtkErrorMacro("Bad environment: " << this->Bake->GetError().substr(17));
     }
-    for (int q = 0; q < 3; ++q)
-    {
-      v[6 + q] = static_cast<float>(this->PlaneAlbedos[3 * k + q]);
-    }
-    blockers.AddPlane(v, v + 3, v + 6);
-  }
-  proxygi::SoftShadowSettings settings;
-  settings.Order = order;
-  settings.MinAngle = static_cast<float>(this->MinBlockerAngle);
-  settings.SelfShadowRules = this->SelfShadowRules;
-  settings.Exp.HybridMaxNorm = this->HybridMaxNorm;
-  settings.Exp.RangeGuard = this->RangeTolerance >= 0.0;
-  settings.Exp.RangeTolerance = std::max(0.0, this->RangeTolerance);
-  settings.PlanesInLogSpace = !g.PlanesInLight;
-  const proxygi::ShadowedIndirect kernel(settings,
-    this->SphericalLightBlocking == BLOCKING_PER_OBJECT
-      ? proxygi::SphericalLightBlocking::PerObject
-      : proxygi::SphericalLightBlocking::PerSphere);
-  const double* light = g.SampleLight.data();
-  const proxygi::EnvironmentShading shading(
-    order, light, light + n2, light + 2 * n2, proxygi::EnvironmentShading::Path::ProductMatrix);
-  const bool dark = light[0] <= 0.0 && light[n2] <= 0.0 && light[2 * n2] <= 0.0;
-  proxygi::LocalEmitters emitters;
-  if (this->LocalLights)
-  {
-    emitters.AddLights(*lighting);
-  }
-  proxygi::SphericalLights lights;
-  std::string summary, error;
-  const std::string why = proxygi::PrepareSphericalLights(this->Proxies, leafIds, nullptr, order,
-    this->ProxyAlbedoArrayName, this->DefaultProxyAlbedo, shading, dark, blockers,
-    emitters.Count() ? &emitters : nullptr, kernel, lights, summary, error);
-  if (!error.empty())
-  {
-    vtkErrorMacro(<< error);
     return false;
   }
-  g.SphericalLightCount = why.empty() ? static_cast<int>(lights.Count()) : 0;
-  g.SphericalLightSummary = why.empty() ? summary : "skipped: " + why;
-  g.Resources.SetSphericalLights(
-    why.empty() ? &lights : nullptr, this->SphericalLightBlocking == BLOCKING_PER_OBJECT);
+  if (rebuilt && !this->Bake->GetProxyError().empty())
+  {
+    vtkErrorMacro("Proxies ignored: " << this->Bake->GetProxyError() << ".");
+  }
+  if (this->Bake->GetBuildTime() != g.BakeUploaded)
+  {
+    why << "scene; ";
+  }
   return true;
 }
 
-bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
+void vtkPGIGIPolyDataMapper::UploadBake(vtkOpenGLRenderWindow* window, std::ostringstream& why)
 {
   Internals& g = *this->GPU;
-  vtkPolyData* input = this->CurrentInput;
-  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!this->GlobalIllumination || !input || input->GetNumberOfPoints() == 0 || !window)
+  const proxygi::BakedScene& b = this->Bake->GetScene();
+  if (this->Bake->GetBuildTime() == g.BakeUploaded && g.UploadedOrder == b.Order && g.ProxyAlbedo)
   {
-    this->GIStatus = !this->GlobalIllumination ? "GI off: VTK lighting" : "GI: nothing to draw";
-    return false;
+    return;
   }
+  const int n2 = b.Order * b.Order;
+  const double* light = b.Light.data();
+  g.Resources.SetLight(light, light + n2, light + 2 * n2);
+  const double* above = b.LightAbovePlanes.data();
+  if (b.PlanesInLight)
+  {
+    g.Resources.SetLightAbovePlanes(above, above + n2, above + 2 * n2);
+  }
+  else
+  {
+    g.Resources.SetLightAbovePlanes(nullptr, nullptr, nullptr);
+  }
+  g.PlanesInLight = b.PlanesInLight;
+  g.PlaneVisibility.assign(b.PlaneVisibility.begin(), b.PlaneVisibility.end());
+  g.Response = b.InterleavedResponse;
+  g.Resources.SetBlockers(
+    proxygi::gpu::PackSpheres(b.SceneBlockers), proxygi::gpu::PackPlanes(b.SceneBlockers));
+  g.ProxyCount = static_cast<int>(b.SceneBlockers.Spheres());
+  g.PlaneCount = static_cast<int>(b.SceneBlockers.Planes());
+  g.PlaneAlbedos = proxygi::gpu::PackPlaneAlbedos(b.SceneBlockers);
+  proxygi::gpu::UploadProxyAlbedos(window, b.SceneBlockers, g.Albedos, g.ProxyAlbedo);
+
+  // The shadowed bounce's spherical lights after the bake's first pass.
+  g.SphericalLightCount = b.RunShadowed ? static_cast<int>(b.Lights.Count()) : 0;
+  g.SphericalLightSummary = b.SphericalLightsSummary;
+  g.Resources.SetSphericalLights(b.RunShadowed ? &b.Lights : nullptr,
+    this->Effective->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT);
+
+  // Local lights as pgiLocalLights reads them: radius -1 for a point light.
+  g.LocalLights.clear();
+  g.LocalRadiance.clear();
+  const std::size_t lights = b.Locals.Count();
+  for (std::size_t k = 0; k < lights && k < static_cast<std::size_t>(MaxLocalLights); ++k)
+  {
+    g.LocalLights.insert(g.LocalLights.end(),
+      { b.Locals.X[k], b.Locals.Y[k], b.Locals.Z[k], b.Locals.Point[k] ? -1.0f : b.Locals.R[k] });
+    g.LocalRadiance.insert(
+      g.LocalRadiance.end(), &b.Locals.Radiance[3 * k], &b.Locals.Radiance[3 * k] + 3);
+  }
+  if (lights > static_cast<std::size_t>(MaxLocalLights))
+  {
+    vtkErrorMacro("At most " << MaxLocalLights << " local lights on the GPU; " << lights
+                             << " given, the first " << MaxLocalLights << " used.");
+  }
+  g.Resources.SetAnalyticLightTable(!g.LocalLights.empty());
+  g.BakeUploaded = this->Bake->GetBuildTime();
+  g.UploadedOrder = b.Order;
+  (void)why;
+}
+
+void vtkPGIGIPolyDataMapper::UploadReceivers(vtkPolyData* input, std::ostringstream& why)
+{
+  Internals& g = *this->GPU;
   const vtkIdType n = input->GetNumberOfPoints();
-  const int order = this->Order, n2 = order * order;
-  std::ostringstream why;
-
-  if (g.Window != window)
+  const char* albedoArray = this->Effective->GetAlbedoArrayName();
+  const double* fallback = this->Effective->GetDefaultAlbedo();
+  std::ostringstream key;
+  key.precision(17);
+  key << (albedoArray ? albedoArray : "") << " " << fallback[0] << " " << fallback[1] << " "
+      << fallback[2];
+  if (g.Input == input && input->GetMTime() == g.InputTime && g.Points == n &&
+    key.str() == g.AlbedoKey)
   {
-    if (g.Window)
+    return;
+  }
+  vtkSmartPointer<vtkDataArray> normals = proxygi::ReceiverNormals(input);
+  std::vector<float> data(9 * static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3], nd[3] = { 0.0, 0.0, 1.0 }, albedo[3];
+    input->GetPoint(i, p);
+    // Normalised in double, as the CPU filter does, so both start from
+    // the same floats.
+    if (normals)
     {
-      this->ReleaseGraphicsResources(g.Window);
-    }
-    g.Window = window;
-    why << "new context; ";
-  }
-
-  // Light: the environment projected to SH at this order (as the filter does).
-  vtkNew<vtkPGILighting> defaultLighting;
-  vtkPGILighting* lighting = this->Lighting ? this->Lighting : defaultLighting.Get();
-  const vtkMTimeType lightingTime = this->Lighting ? this->Lighting->GetMTime() : 0;
-  if (!g.Resources.SetOrder(window, order))
-  {
-    vtkErrorMacro("Could not upload the SH tables of order " << order << ".");
-    return false;
-  }
-  // The knobs the GI pass depends on; display knobs (exposure, sRGB,
-  // combining with VTK's lights) only change uniforms of the surface pass.
-  std::ostringstream knobs;
-  knobs.precision(17);
-  knobs << order << " " << this->Shadows << " " << this->Albedo[0] << " " << this->Albedo[1] << " "
-        << this->Albedo[2] << " " << (this->AlbedoArrayName ? this->AlbedoArrayName : "") << " "
-        << this->SelfShadowRules << " " << this->MinBlockerAngle << " " << this->HybridMaxNorm
-        << " " << this->RangeTolerance << " " << this->CaptureVisibility << " "
-        << this->PlaneBlocking << " " << this->Indirect << " " << this->DefaultProxyAlbedo[0] << " "
-        << this->DefaultProxyAlbedo[1] << " " << this->DefaultProxyAlbedo[2] << " "
-        << (this->ProxyAlbedoArrayName ? this->ProxyAlbedoArrayName : "") << " "
-        << this->LocalLights << " " << this->PlaneBounceShadows << " " << this->IndirectMode << " "
-        << this->SphericalLightBlocking;
-  for (double v : this->BlockerPlanes)
-  {
-    knobs << " " << v;
-  }
-  for (double v : this->PlaneAlbedos)
-  {
-    knobs << " " << v;
-  }
-  const bool settingsChanged = knobs.str() != g.Settings;
-  const int planeCount = static_cast<int>(this->BlockerPlanes.size() / 6);
-
-  // The lights, built on the CPU as the filter builds them: L; with planes
-  // carried by the light, L times the planes' steps (LightAbovePlanes) and
-  // the planes' visibility; the secondary lights' response (SecondaryLights:
-  // from the light above the planes, or from L times the planes' exp-log
-  // visibility when the planes are in log space).
-  bool lightChanged = false, proxiesChanged = false;
-  if (g.LightOrder != order || g.LightingTime != lightingTime || settingsChanged)
-  {
-    const proxygi::EnvironmentMap* environment = nullptr;
-    std::string error;
-    if (!lighting->GetEnvironment(environment, error))
-    {
-      vtkErrorMacro("Bad environment: " << error);
-      return false;
-    }
-    std::vector<double> lr(n2), lg(n2), lb(n2);
-    environment->ProjectSH(order, lr.data(), lg.data(), lb.data());
-    g.Resources.SetLight(lr.data(), lg.data(), lb.data());
-    g.PlanesInLight = this->PlaneBlocking == PLANES_IN_LIGHT && planeCount > 0;
-    proxygi::Blockers planes;
-    for (int k = 0; k < planeCount; ++k)
-    {
-      float v[9];
-      for (int q = 0; q < 6; ++q)
+      normals->GetTuple(i, nd);
+      const double len = std::sqrt(nd[0] * nd[0] + nd[1] * nd[1] + nd[2] * nd[2]);
+      if (len > 0.0)
       {
-        v[q] = static_cast<float>(this->BlockerPlanes[6 * k + q]);
+        nd[0] /= len;
+        nd[1] /= len;
+        nd[2] /= len;
       }
-      for (int q = 0; q < 3; ++q)
+      else
       {
-        v[6 + q] = static_cast<float>(this->PlaneAlbedos[3 * k + q]);
-      }
-      planes.AddPlane(v, v + 3, v + 6);
-    }
-    std::vector<double> planeVisibility(n2, 0.0);
-    if (g.PlanesInLight)
-    {
-      proxygi::LightAbovePlanes(*environment, order, planes.PlaneNormal.data(), planeCount,
-        lr.data(), lg.data(), lb.data(), planeVisibility.data());
-      g.Resources.SetLightAbovePlanes(lr.data(), lg.data(), lb.data());
-    }
-    else
-    {
-      g.Resources.SetLightAbovePlanes(nullptr, nullptr, nullptr);
-    }
-    g.SampleLight.assign(lr.begin(), lr.end());
-    g.SampleLight.insert(g.SampleLight.end(), lg.begin(), lg.end());
-    g.SampleLight.insert(g.SampleLight.end(), lb.begin(), lb.end());
-    lightChanged = true;
-    g.PlaneVisibility.assign(planeVisibility.begin(), planeVisibility.end());
-    const proxygi::SecondaryLights secondary(
-      order, lr.data(), lg.data(), lb.data(), g.PlanesInLight ? nullptr : &planes);
-    g.Response.resize(3 * static_cast<std::size_t>(n2));
-    for (int i = 0; i < n2; ++i)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        g.Response[3 * i + c] = secondary.Response[c * n2 + i];
+        nd[0] = nd[1] = 0.0;
+        nd[2] = 1.0;
       }
     }
-    // Local lights as the filter reads them: spheres, then points.
-    g.LocalLights.clear();
-    g.LocalRadiance.clear();
-    if (this->LocalLights)
+    proxygi::AlbedoOf(input, albedoArray, i, fallback, albedo);
+    float* row = &data[9 * i];
+    for (int k = 0; k < 3; ++k)
     {
-      for (const auto& l : lighting->GetSphereLights())
-      {
-        g.LocalLights.insert(g.LocalLights.end(),
-          { float(l.Center[0]), float(l.Center[1]), float(l.Center[2]), float(l.Radius) });
-        g.LocalRadiance.insert(g.LocalRadiance.end(),
-          { float(l.Radiance[0]), float(l.Radiance[1]), float(l.Radiance[2]) });
-      }
-      for (const auto& l : lighting->GetPointLights())
-      {
-        g.LocalLights.insert(g.LocalLights.end(),
-          { float(l.Position[0]), float(l.Position[1]), float(l.Position[2]), -1.0f });
-        g.LocalRadiance.insert(g.LocalRadiance.end(),
-          { float(l.Intensity[0]), float(l.Intensity[1]), float(l.Intensity[2]) });
-      }
-      if (g.LocalLights.size() > 4 * static_cast<std::size_t>(MaxLocalLights))
-      {
-        vtkErrorMacro("At most " << MaxLocalLights << " local lights on the GPU; "
-                                 << g.LocalLights.size() / 4 << " given, the first "
-                                 << MaxLocalLights << " used.");
-        g.LocalLights.resize(4 * MaxLocalLights);
-        g.LocalRadiance.resize(3 * MaxLocalLights);
-      }
+      row[k] = static_cast<float>(p[k]);
+      row[3 + k] = static_cast<float>(nd[k]);
+      row[6 + k] = static_cast<float>(albedo[k]);
     }
-    g.Resources.SetAnalyticLightTable(!g.LocalLights.empty());
-    if (g.LightOrder != order || g.LightingTime != lightingTime)
-    {
-      why << "light; ";
-    }
-    g.LightOrder = order;
-    g.LightingTime = lightingTime;
   }
+  g.Receivers->Upload(data, vtkOpenGLBufferObject::ArrayBuffer);
+  g.Input = input;
+  g.InputTime = input->GetMTime();
+  g.Points = n;
+  g.AlbedoKey = key.str();
+  why << "mesh; ";
+}
 
-  // Blockers.
-  const vtkMTimeType proxiesTime = this->Proxies ? this->Proxies->GetMTime() : 0;
-  if (proxiesTime != g.ProxiesTime || settingsChanged || !g.ProxyAlbedo)
-  {
-    std::string error;
-    if (!proxygi::gpu::ReadProxies(this->Proxies, g.Spheres, error))
-    {
-      vtkErrorMacro("Proxies ignored: " << error << ".");
-    }
-    std::vector<float> planes(this->BlockerPlanes.begin(), this->BlockerPlanes.end());
-    g.Resources.SetBlockers(g.Spheres, planes);
-    g.ProxyCount = static_cast<int>(g.Spheres.size() / 4);
-    proxygi::gpu::UploadProxyAlbedos(window, this->Proxies, g.ProxyCount,
-      this->ProxyAlbedoArrayName, this->DefaultProxyAlbedo, g.Albedos, g.ProxyAlbedo);
-    proxiesChanged = true;
-    if (proxiesTime != g.ProxiesTime)
-    {
-      why << "proxies; ";
-    }
-    g.ProxiesTime = proxiesTime;
-  }
-  proxygi::gpu::KernelSettings settings;
-  settings.MinBlockerAngle = this->MinBlockerAngle;
-  settings.SelfShadowRules = this->SelfShadowRules;
-  settings.HybridMaxNorm = this->HybridMaxNorm;
-  settings.RangeTolerance = this->RangeTolerance;
-  g.Resources.SetSettings(settings);
-
-  // Shadowed bounce: the proxies as spherical lights, their first pass on
-  // the CPU (PrepareSphericalLights, as the filter runs it) whenever the
-  // light, the proxies or a knob changed.
-  const bool shadowedMode = this->Indirect && this->IndirectMode == INDIRECT_MODE_SHADOWED;
-  if (!shadowedMode)
-  {
-    if (g.SphericalLightCount > 0 || lightChanged || proxiesChanged)
-    {
-      g.Resources.SetSphericalLights(nullptr, false);
-    }
-    g.SphericalLightCount = 0;
-    g.SphericalLightSummary.clear();
-  }
-  else if (lightChanged || proxiesChanged)
-  {
-    if (!this->UpdateSphericalLights(lighting))
-    {
-      return false;
-    }
-  }
-
-  // Receivers: positions, normals (computed as the filter does if missing), albedo.
-  const std::string albedoArray = this->AlbedoArrayName ? this->AlbedoArrayName : "";
-  if (g.Input != input || input->GetMTime() != g.InputTime || g.Points != n ||
-    albedoArray != g.AlbedoArray || settingsChanged)
-  {
-    vtkSmartPointer<vtkDataArray> normals = input->GetPointData()->GetNormals();
-    if (!normals)
-    {
-      vtkNew<vtkPolyDataNormals> computer;
-      computer->SetInputData(input);
-      computer->SplittingOff();
-      computer->Update();
-      if (computer->GetOutput()->GetNumberOfPoints() == n)
-      {
-        normals = computer->GetOutput()->GetPointData()->GetNormals();
-      }
-    }
-    std::vector<float> data(9 * static_cast<std::size_t>(n));
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      double p[3], nd[3] = { 0.0, 0.0, 1.0 }, albedo[3];
-      input->GetPoint(i, p);
-      // Normalised in double, as the CPU filter does, so both start from
-      // the same floats.
-      if (normals)
-      {
-        normals->GetTuple(i, nd);
-        const double len = std::sqrt(nd[0] * nd[0] + nd[1] * nd[1] + nd[2] * nd[2]);
-        if (len > 0.0)
-        {
-          nd[0] /= len;
-          nd[1] /= len;
-          nd[2] /= len;
-        }
-        else
-        {
-          nd[0] = nd[1] = 0.0;
-          nd[2] = 1.0;
-        }
-      }
-      proxygi::AlbedoOf(input, this->AlbedoArrayName, i, this->Albedo, albedo);
-      float* row = &data[9 * i];
-      for (int k = 0; k < 3; ++k)
-      {
-        row[k] = static_cast<float>(p[k]);
-        row[3 + k] = static_cast<float>(nd[k]);
-        row[6 + k] = static_cast<float>(albedo[k]);
-      }
-    }
-    g.Receivers->Upload(data, vtkOpenGLBufferObject::ArrayBuffer);
-    g.Input = input;
-    g.InputTime = input->GetMTime();
-    g.Points = n;
-    g.AlbedoArray = albedoArray;
-    why << "mesh; ";
-  }
-
-  // The actor's matrix (the mesh moves, proxies stay in world coordinates).
-  std::array<double, 16> matrix;
-  vtkMatrix4x4* m = act->GetMatrix();
-  std::copy(&m->Element[0][0], &m->Element[0][0] + 16, matrix.begin());
-  const bool moved = matrix != g.Matrix;
-  if (moved)
-  {
-    why << "actor matrix; ";
-  }
-  if (settingsChanged)
-  {
-    why << "settings; ";
-  }
-
-  // The compute program: order and the captured outputs fix the source.
-  const int visibilityVec4s = this->CaptureVisibility ? (n2 + 3) / 4 : 0;
-  const std::string key = std::to_string(order) + "/" + std::to_string(visibilityVec4s);
-  if (!g.Capture || g.CaptureKey != key)
-  {
-    g.Capture = SharedCapture(visibilityVec4s);
-    g.CaptureKey = key;
-    g.HaveResults = false;
-    why << "program; ";
-  }
-
-  const std::string reasons = why.str();
-  if (g.HaveResults && reasons.empty() && !this->AlwaysRecompute)
-  {
-    std::ostringstream status;
-    status << "GI on the GPU: " << n << " vertices, " << g.ProxyCount << " proxies, "
-           << this->BlockerPlanes.size() / 6 << " planes, order " << order
-           << "; reused (nothing changed)";
-    this->GIStatus = status.str();
-    return true;
-  }
-
+bool vtkPGIGIPolyDataMapper::RunGIPass(vtkOpenGLRenderWindow* window,
+  const std::array<double, 16>& matrix, int visibilityVec4s, bool resize)
+{
+  Internals& g = *this->GPU;
+  const proxygi::BakedScene& b = this->Bake->GetScene();
+  vtkPGIGISettings* settings = this->Effective;
+  const int order = b.Order, n2 = order * order;
+  const vtkIdType n = g.Points;
   std::string vs = pgiGIComputeVS;
   std::ostringstream captureDec, captureImpl;
   for (int k = 0; k < visibilityVec4s; ++k)
@@ -625,6 +457,7 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
     g.VAO->ShaderProgramChanged();
     g.ProgramHandle = program->GetHandle();
   }
+  g.Resources.SetSettings(proxygi::gpu::KernelSettingsOf(settings));
   g.Resources.Bind(program);
   // Column-major uploads of the actor matrix and its normal matrix.
   float modelToWorld[16];
@@ -653,26 +486,22 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
       normalToWorld[3 * c + r] = static_cast<float>(normalMatrix->GetElement(r, c));
     }
   }
+  const bool indirect = settings->GetIndirect();
+  const bool shadowedMode =
+    indirect && settings->GetIndirectMode() == vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
   program->SetUniformMatrix4x4("pgiModelToWorld", modelToWorld);
   program->SetUniformMatrix3x3("pgiNormalToWorld", normalToWorld);
   const bool identity =
     matrix == std::array<double, 16>{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
   program->SetUniformi("pgiMoved", identity ? 0 : 1);
-  program->SetUniformi("pgiShadows", this->Shadows ? 1 : 0);
+  program->SetUniformi("pgiShadows", settings->GetShadows() ? 1 : 0);
   program->SetUniformi("pgiPlanesInLight", g.PlanesInLight ? 1 : 0);
   program->SetUniform1fv("pgiPlaneVisibility", n2, g.PlaneVisibility.data());
-  program->SetUniformi("pgiIndirect", this->Indirect ? 1 : 0);
+  program->SetUniformi("pgiIndirect", indirect ? 1 : 0);
   program->SetUniformi("pgiIndirectShadowed", shadowedMode ? 1 : 0);
-  program->SetUniformi("pgiPlaneBounceShadows", this->PlaneBounceShadows ? 1 : 0);
+  program->SetUniformi("pgiPlaneBounceShadows", settings->GetPlaneBounceShadows() ? 1 : 0);
   program->SetUniform3fv("pgiResponse", n2, g.Response.data());
-  {
-    std::vector<float> albedos(3 * proxygi::gpu::MaxPlanes, 0.0f);
-    for (std::size_t k = 0; k < this->PlaneAlbedos.size() && k < albedos.size(); ++k)
-    {
-      albedos[k] = static_cast<float>(this->PlaneAlbedos[k]);
-    }
-    program->SetUniform3fv("pgiPlaneAlbedo", proxygi::gpu::MaxPlanes, albedos.data());
-  }
+  program->SetUniform3fv("pgiPlaneAlbedo", proxygi::gpu::MaxPlanes, g.PlaneAlbedos.data());
   {
     const int lights = static_cast<int>(g.LocalLights.size() / 4);
     std::vector<float> centres(4 * MaxLocalLights, 0.0f), radiance(3 * MaxLocalLights, 0.0f);
@@ -702,8 +531,7 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
     }
   }
   const int floats = 4 * (1 + visibilityVec4s);
-  if (!g.HaveResults || g.ResultFloats != floats || g.Results->GetHandle() == 0 ||
-    reasons.find("mesh") != std::string::npos)
+  if (!g.HaveResults || g.ResultFloats != floats || g.Results->GetHandle() == 0 || resize)
   {
     g.Results->Upload(std::vector<float>(static_cast<std::size_t>(n) * floats, 0.0f),
       vtkOpenGLBufferObject::ArrayBuffer);
@@ -719,51 +547,140 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
   g.VAO->Release();
   g.ProxyAlbedo->Deactivate();
   g.Resources.Unbind();
+  return true;
+}
 
+void vtkPGIGIPolyDataMapper::ComposeStatus(vtkIdType points, const std::string& reasons)
+{
+  Internals& g = *this->GPU;
+  vtkPGIGISettings* settings = this->Effective;
+  const bool indirect = settings->GetIndirect();
+  const bool shadowedMode =
+    indirect && settings->GetIndirectMode() == vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
+  std::ostringstream status;
+  status << "GI on the GPU: " << points << " vertices, " << g.ProxyCount << " proxies, "
+         << g.PlaneCount << " planes, order " << g.UploadedOrder;
+  if (reasons.empty() && !this->AlwaysRecompute)
+  {
+    status << "; reused (nothing changed)";
+  }
+  else
+  {
+    status << ", " << (settings->GetShadows() ? "SHEXP shadows (HYB)" : "no shadows")
+           << (g.PlaneCount == 0    ? ""
+                  : g.PlanesInLight ? ", planes carried by the light"
+                                    : ", planes in log space")
+           << (!indirect ? ""
+                  : shadowedMode
+                  ? ", one-bounce indirect (shadowed: " + g.SphericalLightSummary + ")"
+                  : std::string(", one-bounce indirect (averaged, xi)"))
+           << (indirect && settings->GetPlaneBounceShadows() && g.PlaneCount > 0
+                  ? ", planes' bounce shadowed"
+                  : "");
+    if (!g.LocalLights.empty())
+    {
+      status << ", " << g.LocalLights.size() / 4 << " local lights";
+    }
+    // Mesa's llvmpipe ends every loop of a shader invocation once all its
+    // loops together ran 65535 iterations (gallivm's loop limiter): past the
+    // sizes measured to stay inside it (Documentation/Rendering.md), say so.
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const bool llvmpipe = renderer && std::strstr(renderer, "llvmpipe");
+    const bool overBudget =
+      g.ProxyCount > 1000 || (indirect && g.ProxyCount > 600) || g.SphericalLightCount > 96;
+    if (llvmpipe && overBudget)
+    {
+      status << "; on llvmpipe beyond its loop budget (more than 1000 proxies, 600 with the "
+                "bounce or 96 spherical lights): results may be cut short";
+      if (!g.WarnedBudget)
+      {
+        vtkWarningMacro(<< "llvmpipe stops a shader's loops after 65535 iterations in all: with "
+                        << g.ProxyCount << " proxies and " << g.SphericalLightCount
+                        << " spherical lights the GI pass may be cut short. Use a hardware "
+                           "GPU, fewer proxies or vtkPGIGlobalIllumination.");
+        g.WarnedBudget = true;
+      }
+    }
+    status << "; recomputed ("
+           << (reasons.empty() ? "AlwaysRecompute" : reasons.substr(0, reasons.size() - 2)) << ")";
+  }
+  for (const std::string& note : this->SettingsNotes)
+  {
+    status << "; not honoured: " << note;
+  }
+  this->GIStatus = status.str();
+}
+
+bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
+{
+  Internals& g = *this->GPU;
+  vtkPolyData* input = this->CurrentInput;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!this->GlobalIllumination || !input || input->GetNumberOfPoints() == 0 || !window)
+  {
+    this->GIStatus = !this->GlobalIllumination ? "GI off: VTK lighting" : "GI: nothing to draw";
+    return false;
+  }
+  std::ostringstream why;
+  if (g.Window != window)
+  {
+    if (g.Window)
+    {
+      this->ReleaseGraphicsResources(g.Window);
+    }
+    g.Window = window;
+    why << "new context; ";
+  }
+  if (!this->PrepareBake(why))
+  {
+    return false;
+  }
+  const int order = this->Bake->GetScene().Order, n2 = order * order;
+  if (!g.Resources.SetOrder(window, order))
+  {
+    vtkErrorMacro("Could not upload the SH tables of order " << order << ".");
+    return false;
+  }
+  this->UploadBake(window, why);
+  this->UploadReceivers(input, why);
+
+  // The actor's matrix (the mesh moves, proxies stay in world coordinates).
+  std::array<double, 16> matrix;
+  vtkMatrix4x4* m = act->GetMatrix();
+  std::copy(&m->Element[0][0], &m->Element[0][0] + 16, matrix.begin());
+  if (matrix != g.Matrix)
+  {
+    why << "actor matrix; ";
+  }
+  if (this->Effective->GetMTime() != g.SettingsTime)
+  {
+    why << "settings; ";
+  }
+  // The compute program: order and the captured outputs fix the source.
+  const int visibilityVec4s = this->CaptureVisibility ? (n2 + 3) / 4 : 0;
+  const std::string key = std::to_string(order) + "/" + std::to_string(visibilityVec4s);
+  if (!g.Capture || g.CaptureKey != key)
+  {
+    g.Capture = SharedCapture(visibilityVec4s);
+    g.CaptureKey = key;
+    g.HaveResults = false;
+    why << "program; ";
+  }
+  const std::string reasons = why.str();
+  if (g.HaveResults && reasons.empty() && !this->AlwaysRecompute)
+  {
+    this->ComposeStatus(input->GetNumberOfPoints(), reasons);
+    return true;
+  }
+  if (!this->RunGIPass(window, matrix, visibilityVec4s, reasons.find("mesh") != std::string::npos))
+  {
+    return false;
+  }
   g.Matrix = matrix;
-  g.Settings = knobs.str();
+  g.SettingsTime = this->Effective->GetMTime();
   g.HaveResults = true;
   ++this->NumberOfGIUpdates;
-  std::ostringstream status;
-  status << "GI on the GPU: " << n << " vertices, " << g.ProxyCount << " proxies, "
-         << this->BlockerPlanes.size() / 6 << " planes, order " << order << ", "
-         << (this->Shadows ? "SHEXP shadows (HYB)" : "no shadows")
-         << (planeCount == 0      ? ""
-                : g.PlanesInLight ? ", planes carried by the light"
-                                  : ", planes in log space")
-         << (!this->Indirect   ? ""
-                : shadowedMode ? ", one-bounce indirect (shadowed: " + g.SphericalLightSummary + ")"
-                               : std::string(", one-bounce indirect (averaged, xi)"))
-         << (this->Indirect && this->PlaneBounceShadows && planeCount > 0
-                ? ", planes' bounce shadowed"
-                : "");
-  if (!g.LocalLights.empty())
-  {
-    status << ", " << g.LocalLights.size() / 4 << " local lights";
-  }
-  // Mesa's llvmpipe ends every loop of a shader invocation once all its
-  // loops together ran 65535 iterations (gallivm's loop limiter): past the
-  // sizes measured to stay inside it (Documentation/Rendering.md), say so.
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  const bool llvmpipe = renderer && std::strstr(renderer, "llvmpipe");
-  const bool overBudget =
-    g.ProxyCount > 1000 || (this->Indirect && g.ProxyCount > 600) || g.SphericalLightCount > 96;
-  if (llvmpipe && overBudget)
-  {
-    status << "; on llvmpipe beyond its loop budget (more than 1000 proxies, 600 with the "
-              "bounce or 96 spherical lights): results may be cut short";
-    if (!g.WarnedBudget)
-    {
-      vtkWarningMacro(<< "llvmpipe stops a shader's loops after 65535 iterations in all: with "
-                      << g.ProxyCount << " proxies and " << g.SphericalLightCount
-                      << " spherical lights the GI pass may be cut short. Use a hardware GPU, "
-                         "fewer proxies or vtkPGIGlobalIllumination.");
-      g.WarnedBudget = true;
-    }
-  }
-  status << "; recomputed ("
-         << (reasons.empty() ? "AlwaysRecompute" : reasons.substr(0, reasons.size() - 2)) << ")";
-  this->GIStatus = status.str();
+  this->ComposeStatus(input->GetNumberOfPoints(), reasons);
   return true;
 }
 
@@ -846,7 +763,7 @@ bool vtkPGIGIPolyDataMapper::GetPerVertexResults(vtkFloatArray* radiance, vtkFlo
   glGetBufferSubData(
     GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(float)), data.data());
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  const int n2 = this->GPU->LightOrder * this->GPU->LightOrder;
+  const int n2 = this->GPU->UploadedOrder * this->GPU->UploadedOrder;
   radiance->SetNumberOfComponents(3);
   radiance->SetNumberOfTuples(g.Points);
   if (visibility)

@@ -19,6 +19,8 @@
 #include "pgiSHZonal.h"
 #include "vtkPGILighting.h"
 
+#include "vtkAlgorithm.h"
+#include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
@@ -54,7 +56,6 @@
 
 vtkStandardNewMacro(vtkPGIImageSpaceGIPass);
 vtkCxxSetObjectMacro(vtkPGIImageSpaceGIPass, DelegatePass, vtkRenderPass);
-vtkCxxSetObjectMacro(vtkPGIImageSpaceGIPass, Proxies, vtkPolyData);
 vtkCxxSetObjectMacro(vtkPGIImageSpaceGIPass, Lighting, vtkPGILighting);
 
 namespace
@@ -187,12 +188,9 @@ struct vtkPGIImageSpaceGIPass::Internals
   proxygi::gpu::GIResources Resources;
   vtkOpenGLRenderWindow* Window = nullptr;
   int LightOrder = 0;
-  vtkMTimeType LightingTime = 0;
-  bool HaveLight = false;
-  std::vector<float> Spheres;
-  vtkMTimeType ProxiesTime = 0;
-  std::vector<double> Planes;
-  bool BlockersSet = false;
+  vtkMTimeType BakeUploaded = 0;
+  int Proxies = 0, Planes = 0;
+  std::vector<float> PlaneAlbedos; // pgiPlaneAlbedo
 
   // Full-resolution receiver targets (VTK colour, view-space position,
   // normal, albedo, depth), the receiver buffer (world position + eye
@@ -204,11 +202,7 @@ struct vtkPGIImageSpaceGIPass::Internals
   vtkSmartPointer<vtkTextureObject> Lit[MaxLightTargets];
   vtkSmartPointer<vtkTextureObject> IndirectSum, ProxyAlbedo;
   std::vector<float> Response; // pgiResponse, interleaved RGB
-  std::vector<double> LightSH; // the light, 3 x n2 (channel-major)
-  bool ResponseDirty = true;
-  std::string AlbedoKey;
-  std::vector<float> Albedos; // 4 per proxy
-  bool AlbedoDirty = true;
+  std::vector<float> Albedos;  // 4 per proxy
   int LightTargets = 0;
   int Width = 0, Height = 0, LowWidth = 0, LowHeight = 0, Scale = 0, Targets = 0;
 
@@ -225,6 +219,14 @@ struct vtkPGIImageSpaceGIPass::Internals
   double UsedExpansion = 15.0;
   double Times[NumberOfPasses] = {};
   bool HaveFrame = false;
+
+  // This frame: viewport, buffer sizes, camera matrices (column-major),
+  // what runs, the pass clock.
+  int X = 0, Y = 0, W = 0, H = 0, Order = 0;
+  bool Shadows = true, Indirect = false;
+  float VCWC[16], WCDC[16], NVCWC[9];
+  float PlaneTolerance = 0.0f;
+  std::chrono::steady_clock::time_point Mark;
 
   void ReleaseTargets(vtkWindow* w)
   {
@@ -270,7 +272,8 @@ vtkPGIImageSpaceGIPass::vtkPGIImageSpaceGIPass()
 {
   vtkNew<vtkRenderStepsPass> steps;
   this->SetDelegatePass(steps);
-  this->SetProxyAlbedoArrayName("Albedo");
+  this->Settings = vtkPGIGISettings::New();
+  this->Bake->SetSettings(this->Effective);
 }
 
 vtkPGIImageSpaceGIPass::~vtkPGIImageSpaceGIPass()
@@ -278,7 +281,87 @@ vtkPGIImageSpaceGIPass::~vtkPGIImageSpaceGIPass()
   this->SetDelegatePass(nullptr);
   this->SetProxies(nullptr);
   this->SetLighting(nullptr);
-  this->SetProxyAlbedoArrayName(nullptr);
+  this->Settings->UnRegister(this);
+}
+
+void vtkPGIImageSpaceGIPass::SetSettings(vtkPGIGISettings* settings)
+{
+  vtkSmartPointer<vtkPGIGISettings> next = settings;
+  if (!next)
+  {
+    next = vtkSmartPointer<vtkPGIGISettings>::New();
+  }
+  if (next == this->Settings)
+  {
+    return;
+  }
+  this->Settings->UnRegister(this);
+  this->Settings = next;
+  this->Settings->Register(this);
+  this->Modified();
+}
+
+const vtkPGIGISettings::Support& vtkPGIImageSpaceGIPass::GetSupport()
+{
+  static const vtkPGIGISettings::Support support = []
+  {
+    vtkPGIGISettings::Support s;
+    s.Backend = "image-space pass";
+    s.MinOrder = 2;
+    s.MaxOrder = MaxTargets * 4 >= 16 ? 4 : 2;
+    s.ExpMethods = 1u << vtkPGIGISettings::EXP_HYB;
+    s.ExpDegree = false;
+    s.AccumulationOrder = false;
+    s.WindowSize = false;
+    s.ShadingPaths = 1u << vtkPGIGISettings::SHADING_PRODUCT_MATRIX;
+    s.Hierarchy = false;
+    s.IndirectModes = 1u << vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
+    s.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
+    s.SphericalLightBlocking = false;
+    s.PlaneBounceShadows = false;
+    s.PlaneBlockings = 1u << vtkPGIGISettings::PLANES_IN_LOG_SPACE;
+    s.LocalLights = false;
+    s.ReceiverAlbedo = false;
+    return s;
+  }();
+  return support;
+}
+
+void vtkPGIImageSpaceGIPass::SetProxies(vtkPolyData* proxies)
+{
+  if (proxies != this->Proxies)
+  {
+    if (this->Proxies)
+    {
+      this->Proxies->UnRegister(this);
+    }
+    this->Proxies = proxies;
+    if (this->Proxies)
+    {
+      this->Proxies->Register(this);
+    }
+    this->Modified();
+  }
+  this->ProxiesConnection = nullptr;
+}
+
+void vtkPGIImageSpaceGIPass::SetProxiesConnection(vtkAlgorithmOutput* output)
+{
+  this->SetProxies(nullptr);
+  this->ProxiesConnection = output;
+  this->Modified();
+}
+
+vtkPolyData* vtkPGIImageSpaceGIPass::GetProxies()
+{
+  if (this->ProxiesConnection && this->ProxiesConnection->GetProducer())
+  {
+    vtkAlgorithm* producer = this->ProxiesConnection->GetProducer();
+    const int port = this->ProxiesConnection->GetIndex();
+    producer->Update(port);
+    return vtkPolyData::SafeDownCast(producer->GetOutputDataObject(port));
+  }
+  return this->Proxies;
 }
 
 void vtkPGIImageSpaceGIPass::PrintSelf(ostream& os, vtkIndent indent)
@@ -286,26 +369,18 @@ void vtkPGIImageSpaceGIPass::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "DelegatePass: " << this->DelegatePass << "\n";
   os << indent << "Proxies: " << this->Proxies << "\n";
+  os << indent << "ProxiesConnection: " << this->ProxiesConnection.Get() << "\n";
   os << indent << "Lighting: " << this->Lighting << "\n";
-  os << indent << "BlockerPlanes: " << this->BlockerPlanes.size() / 6 << "\n";
+  os << indent << "BlockerPlanes: " << this->Bake->GetNumberOfBlockerPlanes() << "\n";
+  os << indent << "Settings:\n";
+  this->Settings->PrintSelf(os, indent.GetNextIndent());
   os << indent << "ReceiverScale: " << this->ReceiverScale << "\n";
   os << indent << "Upsampling: " << (this->Upsampling == Bilateral ? "Bilateral" : "Bilinear")
      << "\n";
-  os << indent << "Order: " << this->Order << "\n";
   os << indent << "ExpansionFactor: " << this->ExpansionFactor << "\n";
   os << indent << "AutomaticExpansionFactor: " << this->AutomaticExpansionFactor << "\n";
   os << indent << "ExpansionTolerance: " << this->ExpansionTolerance << "\n";
-  os << indent << "Shadows: " << this->Shadows << "\n";
-  os << indent << "Indirect: " << this->Indirect << "\n";
   os << indent << "IndirectExpansionFactor: " << this->IndirectExpansionFactor << "\n";
-  os << indent << "DefaultProxyAlbedo: " << this->DefaultProxyAlbedo[0] << " "
-     << this->DefaultProxyAlbedo[1] << " " << this->DefaultProxyAlbedo[2] << "\n";
-  os << indent << "ProxyAlbedoArrayName: "
-     << (this->ProxyAlbedoArrayName ? this->ProxyAlbedoArrayName : "(none)") << "\n";
-  os << indent << "SelfShadowRules: " << this->SelfShadowRules << "\n";
-  os << indent << "MinBlockerAngle: " << this->MinBlockerAngle << "\n";
-  os << indent << "HybridMaxNorm: " << this->HybridMaxNorm << "\n";
-  os << indent << "RangeTolerance: " << this->RangeTolerance << "\n";
   os << indent << "NormalPower: " << this->NormalPower << "\n";
   os << indent << "DepthEpsilon: " << this->DepthEpsilon << "\n";
   os << indent << "FallbackThreshold: " << this->FallbackThreshold << "\n";
@@ -340,26 +415,18 @@ void vtkPGIImageSpaceGIPass::AddBlockerPlane(const double origin[3], const doubl
 void vtkPGIImageSpaceGIPass::AddBlockerPlane(
   const double origin[3], const double normal[3], const double albedo[3])
 {
-  if (this->BlockerPlanes.size() / 6 >= static_cast<std::size_t>(proxygi::gpu::MaxPlanes))
+  if (this->Bake->GetNumberOfBlockerPlanes() >= proxygi::gpu::MaxPlanes)
   {
     vtkErrorMacro("At most " << proxygi::gpu::MaxPlanes << " blocker planes.");
     return;
   }
-  const double len =
-    std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
-  this->BlockerPlanes.insert(this->BlockerPlanes.end(), origin, origin + 3);
-  for (int k = 0; k < 3; ++k)
-  {
-    this->BlockerPlanes.push_back(len > 0.0 ? normal[k] / len : (k == 2 ? 1.0 : 0.0));
-  }
-  this->PlaneAlbedos.insert(this->PlaneAlbedos.end(), albedo, albedo + 3);
+  this->Bake->AddBlockerPlane(origin, normal, albedo);
   this->Modified();
 }
 
 void vtkPGIImageSpaceGIPass::RemoveAllBlockerPlanes()
 {
-  this->BlockerPlanes.clear();
-  this->PlaneAlbedos.clear();
+  this->Bake->RemoveAllBlockerPlanes();
   this->Modified();
 }
 
@@ -481,13 +548,12 @@ void vtkPGIImageSpaceGIPass::ReleaseGraphicsResources(vtkWindow* w)
     g.ProxyAlbedo->ReleaseGraphicsResources(w);
     g.ProxyAlbedo = nullptr;
   }
-  g.AlbedoDirty = true;
   g.Cube->ReleaseGraphicsResources();
   g.CubeVAO->ReleaseGraphicsResources();
   g.CubeProgram = 0;
   g.Window = nullptr;
-  g.HaveLight = false;
-  g.BlockersSet = false;
+  g.LightOrder = 0;
+  g.BakeUploaded = 0;
   this->Superclass::ReleaseGraphicsResources(w);
 }
 
@@ -581,29 +647,22 @@ bool vtkPGIImageSpaceGIPass::GetVisibilityBuffer(vtkFloatArray* visibility, vtkF
 }
 
 //------------------------------------------------------------------------------
-void vtkPGIImageSpaceGIPass::SetIndirectUniforms(vtkShaderProgram* program, float planeTolerance)
+void vtkPGIImageSpaceGIPass::SetIndirectUniforms(vtkShaderProgram* program)
 {
   Internals& g = *this->GPU;
-  const bool indirect = this->Indirect && this->Shadows && !g.Response.empty();
-  program->SetUniformf("pgiPlaneTolerance", planeTolerance);
-  program->SetUniformi("pgiIndirect", indirect ? 1 : 0);
+  program->SetUniformf("pgiPlaneTolerance", g.PlaneTolerance);
+  program->SetUniformi("pgiIndirect", g.Indirect ? 1 : 0);
   program->SetUniformf("pgiIndirectExpansion", static_cast<float>(this->IndirectExpansionFactor));
-  if (indirect)
+  if (g.Indirect)
   {
     program->SetUniform3fv(
       "pgiResponse", static_cast<int>(g.Response.size() / 3), g.Response.data());
   }
-  std::vector<float> albedos(3 * proxygi::gpu::MaxPlanes, 0.0f);
-  for (std::size_t k = 0; k < this->PlaneAlbedos.size() && k < albedos.size(); ++k)
-  {
-    albedos[k] = static_cast<float>(this->PlaneAlbedos[k]);
-  }
-  program->SetUniform3fv("pgiPlaneAlbedo", proxygi::gpu::MaxPlanes, albedos.data());
+  program->SetUniform3fv("pgiPlaneAlbedo", proxygi::gpu::MaxPlanes, g.PlaneAlbedos.data());
 }
 
 void vtkPGIImageSpaceGIPass::Splat(vtkOpenGLRenderWindow* window, const std::string& vs,
-  const std::string& fs, double expansion, float planeTolerance, const float wcdc[16], int proxies,
-  bool albedo)
+  const std::string& fs, double expansion, bool albedo)
 {
   Internals& g = *this->GPU;
   vtkOpenGLState* ostate = window->GetState();
@@ -624,7 +683,7 @@ void vtkPGIImageSpaceGIPass::Splat(vtkOpenGLRenderWindow* window, const std::str
     g.Cube->Upload(CubeTriangles(), vtkOpenGLBufferObject::ArrayBuffer);
   }
   g.Resources.Bind(program);
-  this->SetIndirectUniforms(program, planeTolerance);
+  this->SetIndirectUniforms(program);
   g.RPosition->Activate();
   g.RNormal->Activate();
   program->SetUniformi("pgiReceiverPosition", g.RPosition->GetTextureUnit());
@@ -634,7 +693,7 @@ void vtkPGIImageSpaceGIPass::Splat(vtkOpenGLRenderWindow* window, const std::str
     g.ProxyAlbedo->Activate();
     program->SetUniformi("pgiProxyAlbedo", g.ProxyAlbedo->GetTextureUnit());
   }
-  program->SetUniformMatrix4x4("pgiWCDC", const_cast<float*>(wcdc));
+  program->SetUniformMatrix4x4("pgiWCDC", g.WCDC);
   program->SetUniformf("pgiExpansion", static_cast<float>(expansion));
   g.CubeVAO->Bind();
   g.CubeVAO->AddAttributeArray(program, g.Cube, "pgiCorner", 0, 12, VTK_FLOAT, 3, false);
@@ -645,7 +704,7 @@ void vtkPGIImageSpaceGIPass::Splat(vtkOpenGLRenderWindow* window, const std::str
   ostate->vtkglCullFace(GL_FRONT);
   // Boxes crossing the near or far plane are not clipped there.
   glEnable(GL_DEPTH_CLAMP);
-  glDrawArraysInstanced(GL_TRIANGLES, 0, 36, proxies);
+  glDrawArraysInstanced(GL_TRIANGLES, 0, 36, g.Proxies);
   glDisable(GL_DEPTH_CLAMP);
   ostate->vtkglCullFace(GL_BACK);
   ostate->vtkglDisable(GL_CULL_FACE);
@@ -662,159 +721,113 @@ void vtkPGIImageSpaceGIPass::Splat(vtkOpenGLRenderWindow* window, const std::str
   g.Resources.Unbind();
 }
 
-//------------------------------------------------------------------------------
-void vtkPGIImageSpaceGIPass::Render(const vtkRenderState* s)
+void vtkPGIImageSpaceGIPass::Lap(int pass)
 {
-  vtkOpenGLClearErrorMacro();
-  this->NumberOfRenderedProps = 0;
   Internals& g = *this->GPU;
-  vtkRenderer* ren = s->GetRenderer();
-  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!this->DelegatePass || !window)
+  if (this->MeasurePassTimes)
   {
-    vtkWarningMacro("No delegate pass or no OpenGL window: nothing rendered.");
-    return;
-  }
-  vtkOpenGLState* ostate = window->GetState();
-  if (g.Window != window)
-  {
-    if (g.Window)
-    {
-      this->ReleaseGraphicsResources(g.Window);
-    }
-    g.Window = window;
-  }
-
-  int x = 0, y = 0, w = 0, h = 0;
-  if (vtkFrameBufferObjectBase* target = s->GetFrameBuffer())
-  {
-    target->GetLastSize(w, h);
+    glFinish();
+    const auto now = std::chrono::steady_clock::now();
+    g.Times[pass] = std::chrono::duration<double>(now - g.Mark).count();
+    g.Mark = now;
   }
   else
   {
-    ren->GetTiledSizeAndOrigin(&w, &h, &x, &y);
+    g.Times[pass] = 0.0;
   }
-  const int order = this->Order, n2 = order * order;
-  const int scale = this->ReceiverScale;
+}
 
-  // Inputs: the light at this order, the blockers.
-  auto plainRender = [&](const std::string& why)
+//------------------------------------------------------------------------------
+// The bake (settings resolved for this pass) and what the GPU needs of it.
+bool vtkPGIImageSpaceGIPass::PrepareInputs(vtkOpenGLRenderWindow* window, std::string& why)
+{
+  Internals& g = *this->GPU;
+  std::vector<std::string> notes;
+  this->Settings->Resolve(
+    GetSupport(), this->Bake->GetNumberOfBlockerPlanes(), this->Effective, notes);
+  vtkPGILighting* lighting = this->Lighting;
+  if (this->Settings->GetLocalLights() && lighting &&
+    (!lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty()))
   {
-    this->Status = "image-space GI off: " + why;
-    this->DelegatePass->Render(s);
-    this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
-  };
+    notes.push_back("LocalLights: the lighting's " +
+      std::to_string(lighting->GetSphereLights().size() + lighting->GetPointLights().size()) +
+      " local lights are not drawn in the image-space pass");
+  }
+  if (notes != this->SettingsNotes)
+  {
+    for (const std::string& note : notes)
+    {
+      vtkWarningMacro(<< "Not honoured: " << note << ".");
+    }
+    this->SettingsNotes = notes;
+  }
+  this->Bake->SetProxies(this->GetProxies());
+  this->Bake->SetLighting(lighting);
+  const int builds = this->Bake->GetNumberOfBuilds();
+  const bool ok = this->Bake->Update();
+  const bool rebuilt = this->Bake->GetNumberOfBuilds() != builds;
+  if (!ok && this->Bake->GetProxyError().empty())
+  {
+    if (rebuilt)
+    {
+      vtkErrorMacro("Bad environment: " << this->Bake->GetError().substr(17));
+    }
+    why = "bad environment";
+    return false;
+  }
+  if (rebuilt && !this->Bake->GetProxyError().empty())
+  {
+    vtkErrorMacro("Proxies ignored: " << this->Bake->GetProxyError() << ".");
+  }
+  const proxygi::BakedScene& b = this->Bake->GetScene();
+  const int order = b.Order, n2 = order * order;
   if (!g.Resources.SetOrder(window, order))
   {
     vtkErrorMacro("Could not upload the SH tables of order " << order << ".");
-    plainRender("no SH tables");
-    return;
+    why = "no SH tables";
+    return false;
   }
-  vtkNew<vtkPGILighting> defaultLighting;
-  vtkPGILighting* lighting = this->Lighting ? this->Lighting : defaultLighting.Get();
-  const vtkMTimeType lightingTime = this->Lighting ? this->Lighting->GetMTime() : 0;
-  if (!g.HaveLight || g.LightOrder != order || g.LightingTime != lightingTime)
+  if (this->Bake->GetBuildTime() != g.BakeUploaded || g.LightOrder != order || !g.ProxyAlbedo)
   {
-    const proxygi::EnvironmentMap* environment = nullptr;
-    std::string error;
-    if (!lighting->GetEnvironment(environment, error))
-    {
-      vtkErrorMacro("Bad environment: " << error);
-      plainRender("bad environment");
-      return;
-    }
-    std::vector<double> lr(n2), lg(n2), lb(n2);
-    environment->ProjectSH(order, lr.data(), lg.data(), lb.data());
-    g.Resources.SetLight(lr.data(), lg.data(), lb.data());
-    g.LightSH.assign(lr.begin(), lr.end());
-    g.LightSH.insert(g.LightSH.end(), lg.begin(), lg.end());
-    g.LightSH.insert(g.LightSH.end(), lb.begin(), lb.end());
-    g.ResponseDirty = true;
+    const double* light = b.Light.data();
+    g.Resources.SetLight(light, light + n2, light + 2 * n2);
+    g.Resources.SetBlockers(
+      proxygi::gpu::PackSpheres(b.SceneBlockers), proxygi::gpu::PackPlanes(b.SceneBlockers));
+    g.Proxies = static_cast<int>(b.SceneBlockers.Spheres());
+    g.Planes = static_cast<int>(b.SceneBlockers.Planes());
+    g.PlaneAlbedos = proxygi::gpu::PackPlaneAlbedos(b.SceneBlockers);
+    // Indirect: the leaves' albedo and the secondary lights' response
+    // (the planes in log space, as this pass always has them).
+    proxygi::gpu::UploadProxyAlbedos(window, b.SceneBlockers, g.Albedos, g.ProxyAlbedo);
+    g.Response = b.InterleavedResponse;
     g.LightExpansionTolerance = 0.0; // recomputed below when needed
+    g.BakeUploaded = this->Bake->GetBuildTime();
     g.LightOrder = order;
-    g.LightingTime = lightingTime;
-    g.HaveLight = true;
   }
-  const vtkMTimeType proxiesTime = this->Proxies ? this->Proxies->GetMTime() : 0;
-  if (!g.BlockersSet || proxiesTime != g.ProxiesTime || g.Planes != this->BlockerPlanes)
-  {
-    std::string error;
-    if (!proxygi::gpu::ReadProxies(this->Proxies, g.Spheres, error))
-    {
-      vtkErrorMacro("Proxies ignored: " << error << ".");
-    }
-    std::vector<float> planes(this->BlockerPlanes.begin(), this->BlockerPlanes.end());
-    g.Resources.SetBlockers(g.Spheres, planes);
-    g.ProxiesTime = proxiesTime;
-    g.Planes = this->BlockerPlanes;
-    g.BlockersSet = true;
-    g.ResponseDirty = true;
-    g.AlbedoDirty = true;
-  }
-  // Indirect: the proxies' albedo (as the CPU filter reads it, leaves only)
-  // and the secondary lights' response (SecondaryLights, planes included).
-  const std::string albedoKey =
-    std::string(this->ProxyAlbedoArrayName ? this->ProxyAlbedoArrayName : "") + " " +
-    std::to_string(this->DefaultProxyAlbedo[0]) + " " +
-    std::to_string(this->DefaultProxyAlbedo[1]) + " " + std::to_string(this->DefaultProxyAlbedo[2]);
-  if (this->Indirect && (g.AlbedoDirty || albedoKey != g.AlbedoKey))
-  {
-    proxygi::gpu::UploadProxyAlbedos(window, this->Proxies, static_cast<int>(g.Spheres.size() / 4),
-      this->ProxyAlbedoArrayName, this->DefaultProxyAlbedo, g.Albedos, g.ProxyAlbedo);
-    g.AlbedoDirty = false;
-    g.AlbedoKey = albedoKey;
-  }
-  if (this->Indirect && (g.ResponseDirty || g.Response.size() != 3 * static_cast<std::size_t>(n2)))
-  {
-    proxygi::Blockers planes;
-    for (std::size_t k = 0; k < this->BlockerPlanes.size() / 6; ++k)
-    {
-      const float origin[3] = { float(this->BlockerPlanes[6 * k]),
-        float(this->BlockerPlanes[6 * k + 1]), float(this->BlockerPlanes[6 * k + 2]) };
-      const float normal[3] = { float(this->BlockerPlanes[6 * k + 3]),
-        float(this->BlockerPlanes[6 * k + 4]), float(this->BlockerPlanes[6 * k + 5]) };
-      planes.AddPlane(origin, normal);
-    }
-    const proxygi::SecondaryLights lights(
-      order, &g.LightSH[0], &g.LightSH[n2], &g.LightSH[2 * n2], &planes);
-    g.Response.resize(3 * n2);
-    for (int i = 0; i < n2; ++i)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        g.Response[3 * i + c] = lights.Response[c * n2 + i];
-      }
-    }
-    g.ResponseDirty = false;
-  }
-  proxygi::gpu::KernelSettings settings;
-  settings.MinBlockerAngle = this->MinBlockerAngle;
-  settings.SelfShadowRules = this->SelfShadowRules;
-  settings.HybridMaxNorm = this->HybridMaxNorm;
-  settings.RangeTolerance = this->RangeTolerance;
-  g.Resources.SetSettings(settings);
-  const int proxies = static_cast<int>(g.Spheres.size() / 4);
-  const bool indirect = this->Indirect && this->Shadows;
+  g.Resources.SetSettings(proxygi::gpu::KernelSettingsOf(this->Effective));
   if (this->AutomaticExpansionFactor && g.LightExpansionTolerance != this->ExpansionTolerance)
   {
-    std::vector<double> lr(n2), lg(n2), lb(n2);
-    const proxygi::EnvironmentMap* environment = nullptr;
-    std::string error;
-    if (lighting->GetEnvironment(environment, error))
-    {
-      environment->ProjectSH(order, lr.data(), lg.data(), lb.data());
-      g.LightExpansion =
-        LightingExpansionFactor(order, lr.data(), lg.data(), lb.data(), this->ExpansionTolerance);
-      g.LightExpansionTolerance = this->ExpansionTolerance;
-    }
+    const double* light = b.Light.data();
+    g.LightExpansion =
+      LightingExpansionFactor(order, light, light + n2, light + 2 * n2, this->ExpansionTolerance);
+    g.LightExpansionTolerance = this->ExpansionTolerance;
   }
   g.UsedExpansion = this->AutomaticExpansionFactor ? g.LightExpansion : this->ExpansionFactor;
+  g.Order = order;
+  g.Shadows = this->Effective->GetShadows();
+  g.Indirect = this->Effective->GetIndirect() && g.Shadows && !g.Response.empty();
+  return true;
+}
 
-  // Targets for this size, scale and order.
+// Targets for this size, scale and order.
+void vtkPGIImageSpaceGIPass::AllocateTargets(vtkOpenGLRenderWindow* window)
+{
+  Internals& g = *this->GPU;
+  const int w = g.W, h = g.H, scale = this->ReceiverScale;
   const int lowW = (w + scale - 1) / scale, lowH = (h + scale - 1) / scale;
+  const int n2 = g.Order * g.Order;
   const int targets = (n2 + 3) / 4;
-  const int rows = ShadeRows(order);
-  const int lightTargets = (3 * rows + 3 + 3) / 4; // + indirect RGB
+  const int lightTargets = (3 * ShadeRows(g.Order) + 3 + 3) / 4; // + indirect RGB
   if (w != g.Width || h != g.Height || scale != g.Scale || targets != g.Targets ||
     lightTargets != g.LightTargets || !g.GColor)
   {
@@ -851,8 +864,13 @@ void vtkPGIImageSpaceGIPass::Render(const vtkRenderState* s)
     g.FBO = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
     g.FBO->SetContext(window);
   }
+}
 
-  // Programs for this order.
+// Programs for this order and fallback.
+bool vtkPGIImageSpaceGIPass::BuildPrograms(vtkOpenGLRenderWindow* window)
+{
+  Internals& g = *this->GPU;
+  const int order = g.Order, n2 = order * order, rows = ShadeRows(order);
   if (g.ProgramOrder != order || g.ProgramFallback != this->Fallback || !g.Downsample)
   {
     const std::string library = proxygi::gpu::LibrarySource(order) + "#define PGI_SHADE_ROWS " +
@@ -900,20 +918,23 @@ void vtkPGIImageSpaceGIPass::Render(const vtkRenderState* s)
     {
       vtkErrorMacro("An image-space GI shader did not compile.");
       g.ProgramOrder = 0;
-      plainRender("shader error");
-      return;
+      return false;
     }
   }
+  return true;
+}
 
-  // Camera: world <-> view and world -> clip, column-major for GL.
+// Camera: world <-> view and world -> clip, column-major for GL.
+void vtkPGIImageSpaceGIPass::SetUpFrame(vtkRenderer* ren)
+{
+  Internals& g = *this->GPU;
   vtkCamera* camera = ren->GetActiveCamera();
   vtkMatrix4x4* modelView = camera->GetModelViewTransformMatrix();
   vtkNew<vtkMatrix4x4> viewToWorld;
   vtkMatrix4x4::Invert(modelView, viewToWorld);
-  float vcwc[16], wcdc[16], nvcwc[9];
-  ColumnMajor(viewToWorld, vcwc);
+  ColumnMajor(viewToWorld, g.VCWC);
   ColumnMajor(
-    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1), wcdc);
+    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1), g.WCDC);
   // Normals view -> world: the inverse transpose of viewToWorld's linear
   // part, i.e. modelView's linear part transposed; column-major of that is
   // modelView's rows.
@@ -921,46 +942,24 @@ void vtkPGIImageSpaceGIPass::Render(const vtkRenderState* s)
   {
     for (int c = 0; c < 3; ++c)
     {
-      nvcwc[3 * c + r] = static_cast<float>(modelView->GetElement(c, r));
+      g.NVCWC[3 * c + r] = static_cast<float>(modelView->GetElement(c, r));
     }
   }
-
   // Positions rebuilt from view coordinates are off by a few float ulps of
   // the scene's extent: receivers that close to a blocker plane are on it.
   double far[2];
   camera->GetClippingRange(far);
   const double* eye = camera->GetPosition();
-  const float planeTolerance = static_cast<float>(
+  g.PlaneTolerance = static_cast<float>(
     1e-5 * (far[1] + std::sqrt(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2])));
+}
 
-  using Clock = std::chrono::steady_clock;
-  Clock::time_point mark;
-  auto lap = [&](int pass)
-  {
-    if (this->MeasurePassTimes)
-    {
-      glFinish();
-      const Clock::time_point now = Clock::now();
-      g.Times[pass] = std::chrono::duration<double>(now - mark).count();
-      mark = now;
-    }
-    else
-    {
-      g.Times[pass] = 0.0;
-    }
-  };
-  if (this->MeasurePassTimes)
-  {
-    glFinish();
-    mark = Clock::now();
-  }
-
-  vtkOpenGLState::ScopedglEnableDisable blendSaver(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depthSaver(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable cullSaver(ostate, GL_CULL_FACE);
-
-  // 1. Receiver setup: the scene into the full-resolution targets.
-  ostate->PushFramebufferBindings();
+// 1. Receiver setup: the scene into the full-resolution targets, then one
+// sample per block into the receiver buffer.
+void vtkPGIImageSpaceGIPass::RenderReceivers(const vtkRenderState* s, vtkOpenGLRenderWindow* window)
+{
+  Internals& g = *this->GPU;
+  vtkOpenGLState* ostate = window->GetState();
   g.FBO->Bind();
   g.FBO->AddColorAttachment(0, g.GColor);
   g.FBO->AddColorAttachment(1, g.GPosition);
@@ -968,9 +967,9 @@ void vtkPGIImageSpaceGIPass::Render(const vtkRenderState* s)
   g.FBO->AddColorAttachment(3, g.GAlbedo);
   g.FBO->ActivateDrawBuffers(4);
   g.FBO->AddDepthAttachment(g.GDepth);
-  g.FBO->StartNonOrtho(w, h);
-  ostate->vtkglViewport(0, 0, w, h);
-  ostate->vtkglScissor(0, 0, w, h);
+  g.FBO->StartNonOrtho(g.W, g.H);
+  ostate->vtkglViewport(0, 0, g.W, g.H);
+  ostate->vtkglScissor(0, 0, g.W, g.H);
   this->PreRender(s);
   this->DelegatePass->Render(s);
   this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
@@ -978,202 +977,280 @@ void vtkPGIImageSpaceGIPass::Render(const vtkRenderState* s)
   g.FBO->RemoveColorAttachments(4);
   g.FBO->RemoveDepthAttachment();
 
-  // ... and one sample per block into the receiver buffer.
   ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglDisable(GL_DEPTH_TEST);
   ostate->vtkglDisable(GL_CULL_FACE);
-  ostate->vtkglViewport(0, 0, lowW, lowH);
-  ostate->vtkglScissor(0, 0, lowW, lowH);
+  ostate->vtkglViewport(0, 0, g.LowWidth, g.LowHeight);
+  ostate->vtkglScissor(0, 0, g.LowWidth, g.LowHeight);
   g.FBO->AddColorAttachment(0, g.RPosition);
   g.FBO->AddColorAttachment(1, g.RNormal);
   g.FBO->ActivateDrawBuffers(2);
-  {
-    vtkShaderProgram* program = g.Downsample->Program;
-    window->GetShaderCache()->ReadyShaderProgram(program);
-    g.GPosition->Activate();
-    g.GNormal->Activate();
-    g.GDepth->Activate();
-    program->SetUniformi("pgiGPosition", g.GPosition->GetTextureUnit());
-    program->SetUniformi("pgiGNormal", g.GNormal->GetTextureUnit());
-    program->SetUniformi("pgiGDepth", g.GDepth->GetTextureUnit());
-    program->SetUniformi("pgiScale", scale);
-    program->SetUniformMatrix4x4("pgiVCToWC", vcwc);
-    program->SetUniformMatrix3x3("pgiNormalVCToWC", nvcwc);
-    g.Downsample->Render();
-    g.GPosition->Deactivate();
-    g.GNormal->Deactivate();
-    g.GDepth->Deactivate();
-  }
+  vtkShaderProgram* program = g.Downsample->Program;
+  window->GetShaderCache()->ReadyShaderProgram(program);
+  g.GPosition->Activate();
+  g.GNormal->Activate();
+  g.GDepth->Activate();
+  program->SetUniformi("pgiGPosition", g.GPosition->GetTextureUnit());
+  program->SetUniformi("pgiGNormal", g.GNormal->GetTextureUnit());
+  program->SetUniformi("pgiGDepth", g.GDepth->GetTextureUnit());
+  program->SetUniformi("pgiScale", g.Scale);
+  program->SetUniformMatrix4x4("pgiVCToWC", g.VCWC);
+  program->SetUniformMatrix3x3("pgiNormalVCToWC", g.NVCWC);
+  g.Downsample->Render();
+  g.GPosition->Deactivate();
+  g.GNormal->Deactivate();
+  g.GDepth->Deactivate();
   g.FBO->RemoveColorAttachments(2);
-  lap(ReceiverSetupPass);
+}
 
-  // 2. Splatting: log visibility summed over the proxies' spheres of influence.
-  for (int k = 0; k < targets; ++k)
+// 2. Splatting: log visibility summed over the proxies' spheres of influence.
+void vtkPGIImageSpaceGIPass::SplatShadows(vtkOpenGLRenderWindow* window)
+{
+  Internals& g = *this->GPU;
+  for (int k = 0; k < g.Targets; ++k)
   {
     g.FBO->AddColorAttachment(k, g.Accum[k]);
   }
-  g.FBO->ActivateDrawBuffers(targets);
-  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
-  if (this->Shadows && proxies > 0)
+  g.FBO->ActivateDrawBuffers(g.Targets);
+  window->GetState()->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  window->GetState()->vtkglClear(GL_COLOR_BUFFER_BIT);
+  if (g.Shadows && g.Proxies > 0)
   {
-    this->Splat(
-      window, g.SplatVS, g.SplatFS, g.UsedExpansion, planeTolerance, wcdc, proxies, false);
+    this->Splat(window, g.SplatVS, g.SplatFS, g.UsedExpansion, false);
   }
-  g.FBO->RemoveColorAttachments(targets);
-  lap(SplattingPass);
+  g.FBO->RemoveColorAttachments(g.Targets);
+}
 
-  // 3. Exponentiation: the visibility vector per receiver.
-  for (int k = 0; k < targets; ++k)
+// 3. Exponentiation: the visibility vector per receiver.
+void vtkPGIImageSpaceGIPass::Exponentiate(vtkOpenGLRenderWindow* window)
+{
+  Internals& g = *this->GPU;
+  for (int k = 0; k < g.Targets; ++k)
   {
     g.FBO->AddColorAttachment(k, g.Vis[k]);
   }
-  g.FBO->ActivateDrawBuffers(targets);
+  g.FBO->ActivateDrawBuffers(g.Targets);
+  vtkShaderProgram* program = g.Exp->Program;
+  window->GetShaderCache()->ReadyShaderProgram(program);
+  g.Resources.Bind(program);
+  program->SetUniformf("pgiPlaneTolerance", g.PlaneTolerance);
+  g.RPosition->Activate();
+  g.RNormal->Activate();
+  program->SetUniformi("pgiReceiverPosition", g.RPosition->GetTextureUnit());
+  program->SetUniformi("pgiReceiverNormal", g.RNormal->GetTextureUnit());
+  for (int k = 0; k < g.Targets; ++k)
   {
-    vtkShaderProgram* program = g.Exp->Program;
-    window->GetShaderCache()->ReadyShaderProgram(program);
-    g.Resources.Bind(program);
-    program->SetUniformf("pgiPlaneTolerance", planeTolerance);
-    g.RPosition->Activate();
-    g.RNormal->Activate();
-    program->SetUniformi("pgiReceiverPosition", g.RPosition->GetTextureUnit());
-    program->SetUniformi("pgiReceiverNormal", g.RNormal->GetTextureUnit());
-    for (int k = 0; k < targets; ++k)
-    {
-      g.Accum[k]->Activate();
-      program->SetUniformi(("pgiAccum" + std::to_string(k)).c_str(), g.Accum[k]->GetTextureUnit());
-    }
-    g.Exp->Render();
-    for (int k = 0; k < targets; ++k)
-    {
-      g.Accum[k]->Deactivate();
-    }
-    g.RPosition->Deactivate();
-    g.RNormal->Deactivate();
-    g.Resources.Unbind();
+    g.Accum[k]->Activate();
+    program->SetUniformi(("pgiAccum" + std::to_string(k)).c_str(), g.Accum[k]->GetTextureUnit());
   }
-  g.FBO->RemoveColorAttachments(targets);
+  g.Exp->Render();
+  for (int k = 0; k < g.Targets; ++k)
+  {
+    g.Accum[k]->Deactivate();
+  }
+  g.RPosition->Deactivate();
+  g.RNormal->Deactivate();
+  g.Resources.Unbind();
+  g.FBO->RemoveColorAttachments(g.Targets);
+}
 
-  // Indirect: each proxy's one-bounce light and solid angle, summed.
+// Indirect: each proxy's one-bounce light and solid angle, summed.
+void vtkPGIImageSpaceGIPass::SplatIndirect(vtkOpenGLRenderWindow* window)
+{
+  Internals& g = *this->GPU;
   g.FBO->AddColorAttachment(0, g.IndirectSum);
   g.FBO->ActivateDrawBuffers(1);
-  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
-  if (indirect && proxies > 0)
+  window->GetState()->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  window->GetState()->vtkglClear(GL_COLOR_BUFFER_BIT);
+  if (g.Indirect && g.Proxies > 0)
   {
-    this->Splat(window, g.SplatIndirectVS, g.SplatIndirectFS, this->IndirectExpansionFactor,
-      planeTolerance, wcdc, proxies, true);
+    this->Splat(window, g.SplatIndirectVS, g.SplatIndirectFS, this->IndirectExpansionFactor, true);
   }
   g.FBO->RemoveColorAttachments(1);
-  lap(IndirectPass);
+}
 
-  // ... and the shadowed light M_L g, which is what gets interpolated.
-  for (int k = 0; k < lightTargets; ++k)
+// The shadowed light M_L g (and the resolved indirect light), which is what
+// gets interpolated.
+void vtkPGIImageSpaceGIPass::ShadeReceiverBuffer(vtkOpenGLRenderWindow* window)
+{
+  Internals& g = *this->GPU;
+  for (int k = 0; k < g.LightTargets; ++k)
   {
     g.FBO->AddColorAttachment(k, g.Lit[k]);
   }
-  g.FBO->ActivateDrawBuffers(lightTargets);
+  g.FBO->ActivateDrawBuffers(g.LightTargets);
+  vtkShaderProgram* program = g.Light->Program;
+  window->GetShaderCache()->ReadyShaderProgram(program);
+  g.Resources.Bind(program);
+  this->SetIndirectUniforms(program);
+  g.RNormal->Activate();
+  g.RPosition->Activate();
+  g.IndirectSum->Activate();
+  program->SetUniformi("pgiReceiverNormal", g.RNormal->GetTextureUnit());
+  program->SetUniformi("pgiReceiverPosition", g.RPosition->GetTextureUnit());
+  program->SetUniformi("pgiIndirectSum", g.IndirectSum->GetTextureUnit());
+  for (int k = 0; k < g.Targets; ++k)
   {
-    vtkShaderProgram* program = g.Light->Program;
-    window->GetShaderCache()->ReadyShaderProgram(program);
-    g.Resources.Bind(program);
-    this->SetIndirectUniforms(program, planeTolerance);
-    g.RNormal->Activate();
-    g.RPosition->Activate();
-    g.IndirectSum->Activate();
-    program->SetUniformi("pgiReceiverNormal", g.RNormal->GetTextureUnit());
-    program->SetUniformi("pgiReceiverPosition", g.RPosition->GetTextureUnit());
-    program->SetUniformi("pgiIndirectSum", g.IndirectSum->GetTextureUnit());
-    for (int k = 0; k < targets; ++k)
-    {
-      g.Vis[k]->Activate();
-      program->SetUniformi(("pgiVis" + std::to_string(k)).c_str(), g.Vis[k]->GetTextureUnit());
-    }
-    g.Light->Render();
-    for (int k = 0; k < targets; ++k)
-    {
-      g.Vis[k]->Deactivate();
-    }
-    g.IndirectSum->Deactivate();
-    g.RPosition->Deactivate();
-    g.RNormal->Deactivate();
-    g.Resources.Unbind();
+    g.Vis[k]->Activate();
+    program->SetUniformi(("pgiVis" + std::to_string(k)).c_str(), g.Vis[k]->GetTextureUnit());
   }
-  g.FBO->RemoveColorAttachments(lightTargets);
-  ostate->PopFramebufferBindings();
-  lap(ExponentiationPass);
+  g.Light->Render();
+  for (int k = 0; k < g.Targets; ++k)
+  {
+    g.Vis[k]->Deactivate();
+  }
+  g.IndirectSum->Deactivate();
+  g.RPosition->Deactivate();
+  g.RNormal->Deactivate();
+  g.Resources.Unbind();
+  g.FBO->RemoveColorAttachments(g.LightTargets);
+}
 
-  // 4. Upsampling and shading into the renderer's framebuffer.
-  ostate->vtkglViewport(x, y, w, h);
-  ostate->vtkglScissor(x, y, w, h);
+// 4. Upsampling and shading into the renderer's framebuffer.
+void vtkPGIImageSpaceGIPass::Upsample(vtkOpenGLRenderWindow* window)
+{
+  Internals& g = *this->GPU;
+  vtkOpenGLState* ostate = window->GetState();
+  ostate->vtkglViewport(g.X, g.Y, g.W, g.H);
+  ostate->vtkglScissor(g.X, g.Y, g.W, g.H);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
+  vtkShaderProgram* program = g.Upsample->Program;
+  window->GetShaderCache()->ReadyShaderProgram(program);
+  g.Resources.Bind(program);
+  this->SetIndirectUniforms(program);
+  const bool albedoBound = g.Indirect && g.ProxyAlbedo;
+  if (albedoBound)
   {
-    vtkShaderProgram* program = g.Upsample->Program;
-    window->GetShaderCache()->ReadyShaderProgram(program);
-    g.Resources.Bind(program);
-    this->SetIndirectUniforms(program, planeTolerance);
-    const bool albedoBound = indirect && g.ProxyAlbedo;
-    if (albedoBound)
-    {
-      g.ProxyAlbedo->Activate();
-      program->SetUniformi("pgiProxyAlbedo", g.ProxyAlbedo->GetTextureUnit());
-    }
-    vtkTextureObject* inputs[] = { g.GColor, g.GPosition, g.GNormal, g.GAlbedo, g.GDepth,
-      g.RPosition, g.RNormal };
-    const char* names[] = { "pgiGColor", "pgiGPosition", "pgiGNormal", "pgiGAlbedo", "pgiGDepth",
-      "pgiReceiverPosition", "pgiReceiverNormal" };
-    for (int k = 0; k < 7; ++k)
-    {
-      inputs[k]->Activate();
-      program->SetUniformi(names[k], inputs[k]->GetTextureUnit());
-    }
-    for (int k = 0; k < lightTargets; ++k)
-    {
-      g.Lit[k]->Activate();
-      program->SetUniformi(("pgiLit" + std::to_string(k)).c_str(), g.Lit[k]->GetTextureUnit());
-    }
-    program->SetUniformi("pgiScale", scale);
-    program->SetUniformi("pgiBilateral", this->Upsampling == Bilateral ? 1 : 0);
-    program->SetUniformi("pgiShadows", this->Shadows ? 1 : 0);
-    program->SetUniformf("pgiDepthEpsilon", static_cast<float>(this->DepthEpsilon));
-    program->SetUniformf("pgiNormalPower", static_cast<float>(this->NormalPower));
-    program->SetUniformf("pgiFallbackThreshold", static_cast<float>(this->FallbackThreshold));
-    program->SetUniformMatrix4x4("pgiVCToWC", vcwc);
-    program->SetUniformMatrix3x3("pgiNormalVCToWC", nvcwc);
-    program->SetUniformf("pgiExposure", static_cast<float>(this->Exposure));
-    program->SetUniformi("pgiSRGBOutput", this->SRGBOutput ? 1 : 0);
-    g.Upsample->Render();
-    if (albedoBound)
-    {
-      g.ProxyAlbedo->Deactivate();
-    }
-    for (int k = 0; k < lightTargets; ++k)
-    {
-      g.Lit[k]->Deactivate();
-    }
-    for (int k = 0; k < 7; ++k)
-    {
-      inputs[k]->Deactivate();
-    }
-    g.Resources.Unbind();
+    g.ProxyAlbedo->Activate();
+    program->SetUniformi("pgiProxyAlbedo", g.ProxyAlbedo->GetTextureUnit());
   }
+  vtkTextureObject* inputs[] = { g.GColor, g.GPosition, g.GNormal, g.GAlbedo, g.GDepth, g.RPosition,
+    g.RNormal };
+  const char* names[] = { "pgiGColor", "pgiGPosition", "pgiGNormal", "pgiGAlbedo", "pgiGDepth",
+    "pgiReceiverPosition", "pgiReceiverNormal" };
+  for (int k = 0; k < 7; ++k)
+  {
+    inputs[k]->Activate();
+    program->SetUniformi(names[k], inputs[k]->GetTextureUnit());
+  }
+  for (int k = 0; k < g.LightTargets; ++k)
+  {
+    g.Lit[k]->Activate();
+    program->SetUniformi(("pgiLit" + std::to_string(k)).c_str(), g.Lit[k]->GetTextureUnit());
+  }
+  program->SetUniformi("pgiScale", g.Scale);
+  program->SetUniformi("pgiBilateral", this->Upsampling == Bilateral ? 1 : 0);
+  program->SetUniformi("pgiShadows", g.Shadows ? 1 : 0);
+  program->SetUniformf("pgiDepthEpsilon", static_cast<float>(this->DepthEpsilon));
+  program->SetUniformf("pgiNormalPower", static_cast<float>(this->NormalPower));
+  program->SetUniformf("pgiFallbackThreshold", static_cast<float>(this->FallbackThreshold));
+  program->SetUniformMatrix4x4("pgiVCToWC", g.VCWC);
+  program->SetUniformMatrix3x3("pgiNormalVCToWC", g.NVCWC);
+  program->SetUniformf("pgiExposure", static_cast<float>(this->Exposure));
+  program->SetUniformi("pgiSRGBOutput", this->SRGBOutput ? 1 : 0);
+  g.Upsample->Render();
+  if (albedoBound)
+  {
+    g.ProxyAlbedo->Deactivate();
+  }
+  for (int k = 0; k < g.LightTargets; ++k)
+  {
+    g.Lit[k]->Deactivate();
+  }
+  for (int k = 0; k < 7; ++k)
+  {
+    inputs[k]->Deactivate();
+  }
+  g.Resources.Unbind();
   ostate->vtkglDepthFunc(GL_LEQUAL);
-  lap(UpsamplingPass);
-  g.HaveFrame = true;
+}
 
+void vtkPGIImageSpaceGIPass::ComposeStatus()
+{
+  Internals& g = *this->GPU;
   std::ostringstream status;
-  status << "image-space GI: " << w << "x" << h << " pixels, receiver buffer 1/" << scale << " ("
-         << lowW << "x" << lowH << "), " << proxies << " proxies, "
-         << this->BlockerPlanes.size() / 6 << " planes, order " << order << ", "
-         << (this->Shadows ? "SHEXP shadows (HYB)" : "no shadows")
-         << (indirect ? ", indirect (averaged, expansion " +
+  status << "image-space GI: " << g.W << "x" << g.H << " pixels, receiver buffer 1/" << g.Scale
+         << " (" << g.LowWidth << "x" << g.LowHeight << "), " << g.Proxies << " proxies, "
+         << g.Planes << " planes, order " << g.Order << ", "
+         << (g.Shadows ? "SHEXP shadows (HYB)" : "no shadows")
+         << (g.Indirect ? ", indirect (averaged, expansion " +
                   std::to_string(this->IndirectExpansionFactor) + ")"
-                      : "")
+                        : "")
          << ", expansion " << g.UsedExpansion
          << (this->AutomaticExpansionFactor ? " (of the light)" : "") << ", "
          << (this->Upsampling == Bilateral ? "bilateral" : "bilinear") << " upsampling";
+  for (const std::string& note : this->SettingsNotes)
+  {
+    status << "; not honoured: " << note;
+  }
   this->Status = status.str();
+}
+
+//------------------------------------------------------------------------------
+void vtkPGIImageSpaceGIPass::Render(const vtkRenderState* s)
+{
+  vtkOpenGLClearErrorMacro();
+  this->NumberOfRenderedProps = 0;
+  Internals& g = *this->GPU;
+  vtkRenderer* ren = s->GetRenderer();
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!this->DelegatePass || !window)
+  {
+    vtkWarningMacro("No delegate pass or no OpenGL window: nothing rendered.");
+    return;
+  }
+  if (g.Window != window)
+  {
+    if (g.Window)
+    {
+      this->ReleaseGraphicsResources(g.Window);
+    }
+    g.Window = window;
+  }
+  g.X = g.Y = g.W = g.H = 0;
+  if (vtkFrameBufferObjectBase* target = s->GetFrameBuffer())
+  {
+    target->GetLastSize(g.W, g.H);
+  }
+  else
+  {
+    ren->GetTiledSizeAndOrigin(&g.W, &g.H, &g.X, &g.Y);
+  }
+  std::string why;
+  if (!this->PrepareInputs(window, why) ||
+    (this->AllocateTargets(window), !this->BuildPrograms(window)))
+  {
+    this->Status = "image-space GI off: " + (why.empty() ? std::string("shader error") : why);
+    this->DelegatePass->Render(s);
+    this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
+    return;
+  }
+  this->SetUpFrame(ren);
+  if (this->MeasurePassTimes)
+  {
+    glFinish();
+    g.Mark = std::chrono::steady_clock::now();
+  }
+  vtkOpenGLState* ostate = window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthSaver(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cullSaver(ostate, GL_CULL_FACE);
+  ostate->PushFramebufferBindings();
+  this->RenderReceivers(s, window);
+  this->Lap(ReceiverSetupPass);
+  this->SplatShadows(window);
+  this->Lap(SplattingPass);
+  this->Exponentiate(window);
+  this->SplatIndirect(window);
+  this->Lap(IndirectPass);
+  this->ShadeReceiverBuffer(window);
+  ostate->PopFramebufferBindings();
+  this->Lap(ExponentiationPass);
+  this->Upsample(window);
+  this->Lap(UpsamplingPass);
+  g.HaveFrame = true;
+  this->ComposeStatus();
   vtkOpenGLCheckErrorMacro("failed after vtkPGIImageSpaceGIPass::Render");
 }

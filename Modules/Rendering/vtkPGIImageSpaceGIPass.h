@@ -39,20 +39,27 @@
  * |---|---|---|
  * | ReceiverScale | 2 | receiver buffer at 1/1, 1/2, 1/4 or 1/8 of the window |
  * | Upsampling | Bilateral | Bilateral or Bilinear |
- * | Order | 4 | SH order 2..4 (one RGBA32F target per 4 coefficients) |
- * | ExpansionFactor | 15 | sphere-of-influence radius over proxy radius (the paper's value for
- * order 4) | | AutomaticExpansionFactor | off | on: the factor of the actual light
- * (LightingExpansionFactor at ExpansionTolerance, 1/256) | | Shadows | on | off: unshadowed
- * environment light (no splatting) | | Indirect | off | one-bounce light from proxies (averaged
- * operator) and albedo planes, normalised by xi | | IndirectExpansionFactor | 10 | sphere of
- * influence of the indirect splat | | DefaultProxyAlbedo, ProxyAlbedoArrayName | 0.8, "Albedo" |
- * the proxies' albedo | | SelfShadowRules, MinBlockerAngle, HybridMaxNorm, RangeTolerance | as the
- * mapper | kernel knobs | | NormalPower | 32 | exponent of the bilateral normal weight | |
- * DepthEpsilon | 0.01 | bilateral receiver-plane weight eps / (eps + distance / depth) | |
- * FallbackThreshold | 1e-3 | summed weight below which a pixel takes the fallback | | Fallback |
- * Exact | Exact: shaded from scratch over all proxies; NearestSample: the best-matching sample
- * (cheap on llvmpipe) | | Exposure, SRGBOutput | 1, on | display | | MeasurePassTimes | off |
- * glFinish after each pass and wall-clock times (GetPassTime) |
+ * | ExpansionFactor | 15 | sphere-of-influence radius over proxy radius (the paper's value
+ * for order 4) |
+ * | AutomaticExpansionFactor | off | on: the factor of the actual light
+ * (LightingExpansionFactor at ExpansionTolerance, 1/256) |
+ * | IndirectExpansionFactor | 10 | sphere of influence of the indirect splat |
+ * | NormalPower | 32 | exponent of the bilateral normal weight |
+ * | DepthEpsilon | 0.01 | bilateral receiver-plane weight eps / (eps + distance / depth) |
+ * | FallbackThreshold | 1e-3 | summed weight below which a pixel takes the fallback |
+ * | Fallback | Exact | Exact: shaded from scratch over all proxies; NearestSample: the
+ * best-matching sample (cheap on llvmpipe) |
+ * | Exposure, SRGBOutput | 1, on | display |
+ * | MeasurePassTimes | off | glFinish after each pass and wall-clock times (GetPassTime) |
+ *
+ * The GI knobs are a vtkPGIGISettings (GetSettings; SetSettings shares one
+ * with the CPU filter or the mapper): Order, Shadows, Indirect (needs
+ * Shadows), the kernel knobs and DefaultProxyAlbedo/AlbedoArrayName. What
+ * this pass cannot honour (GetSupport: orders above 4, exp methods other
+ * than HYB, the shadowed bounce, indirect operators other than AVERAGED,
+ * planes in the light, local lights, the receivers' DefaultAlbedo: the
+ * actor's colour is the albedo here) is replaced, with a warning and a
+ * line in GetStatus(). The precompute is the shared vtkPGIGIBake.
  *
  * Inputs as vtkPGIGIPolyDataMapper: proxies (points + "Radius", Level 0 only
  * when a "Level" array is present, world coordinates), lighting, up to 8
@@ -61,20 +68,23 @@
  * pixels keep VTK's colour. The renderer's viewport must start at the
  * window's (or tile's) origin; no stereo.
  *
- * Not done here (CPU only): the point-sampled and exact indirect operators,
- * shadowed indirect light, exp methods other than HYB, orders above 4,
- * translucent receivers.
+ * Not done here: translucent receivers.
  */
 #ifndef vtkPGIImageSpaceGIPass_h
 #define vtkPGIImageSpaceGIPass_h
 
 #include "ProxyGIRenderingModule.h"
+#include "vtkNew.h"
 #include "vtkOpenGLRenderPass.h"
+#include "vtkPGIGIBake.h"
+#include "vtkPGIGISettings.h"
+#include "vtkSmartPointer.h"
 
 #include <memory>
 #include <string>
 #include <vector>
 
+class vtkAlgorithmOutput;
 class vtkFloatArray;
 class vtkOpenGLRenderWindow;
 class vtkPGILighting;
@@ -117,9 +127,13 @@ public:
   virtual void SetDelegatePass(vtkRenderPass* pass);
   vtkGetObjectMacro(DelegatePass, vtkRenderPass);
 
-  /// Sphere proxies: points with a "Radius" point array (world coordinates).
+  /// Sphere proxies: points with a "Radius" point array (world coordinates),
+  /// as data, or from a pipeline that Render updates (a change upstream
+  /// re-executes it), as vtkGlyph3DMapper takes its source.
   virtual void SetProxies(vtkPolyData* proxies);
-  vtkGetObjectMacro(Proxies, vtkPolyData);
+  void SetProxiesConnection(vtkAlgorithmOutput* output);
+  /// The proxies the last frame used (from the connection when there is one).
+  vtkPolyData* GetProxies();
   virtual void SetLighting(vtkPGILighting* lighting);
   vtkGetObjectMacro(Lighting, vtkPGILighting);
   /// Infinite planes blocking the half-space beneath them (at most 8); with
@@ -128,6 +142,14 @@ public:
   void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
   void RemoveAllBlockerPlanes();
 
+  /// The GI knobs (never null); SetSettings(nullptr) restores a private default set.
+  vtkPGIGISettings* GetSettings() { return this->Settings; }
+  virtual void SetSettings(vtkPGIGISettings* settings);
+  /// What this pass honours.
+  static const vtkPGIGISettings::Support& GetSupport();
+  /// The precompute this pass reuses between frames.
+  vtkPGIGIBake* GetBake() { return this->Bake; }
+
   /// 1, 2, 4 or 8 (other values: vtkErrorMacro, unchanged).
   void SetReceiverScale(int scale);
   vtkGetMacro(ReceiverScale, int);
@@ -135,33 +157,10 @@ public:
   vtkGetMacro(Upsampling, int);
   void SetUpsamplingToBilinear() { this->SetUpsampling(Bilinear); }
   void SetUpsamplingToBilateral() { this->SetUpsampling(Bilateral); }
-  vtkSetClampMacro(Order, int, 2, 4);
-  vtkGetMacro(Order, int);
   vtkSetClampMacro(ExpansionFactor, double, 1.0, 1000.0);
   vtkGetMacro(ExpansionFactor, double);
-  vtkSetMacro(Shadows, bool);
-  vtkGetMacro(Shadows, bool);
-  vtkBooleanMacro(Shadows, bool);
-  /// One-bounce light from the proxies and planes (needs Shadows on).
-  vtkSetMacro(Indirect, bool);
-  vtkGetMacro(Indirect, bool);
-  vtkBooleanMacro(Indirect, bool);
   vtkSetClampMacro(IndirectExpansionFactor, double, 1.0, 1000.0);
   vtkGetMacro(IndirectExpansionFactor, double);
-  /// Proxies' albedo: their ProxyAlbedoArrayName point array, else this.
-  vtkSetVector3Macro(DefaultProxyAlbedo, double);
-  vtkGetVector3Macro(DefaultProxyAlbedo, double);
-  vtkSetStringMacro(ProxyAlbedoArrayName);
-  vtkGetStringMacro(ProxyAlbedoArrayName);
-  vtkSetMacro(SelfShadowRules, bool);
-  vtkGetMacro(SelfShadowRules, bool);
-  vtkBooleanMacro(SelfShadowRules, bool);
-  vtkSetClampMacro(MinBlockerAngle, double, 0.0, 0.5);
-  vtkGetMacro(MinBlockerAngle, double);
-  vtkSetClampMacro(HybridMaxNorm, double, 0.0, 10.0);
-  vtkGetMacro(HybridMaxNorm, double);
-  vtkSetMacro(RangeTolerance, double);
-  vtkGetMacro(RangeTolerance, double);
   vtkSetClampMacro(NormalPower, double, 0.0, 1024.0);
   vtkGetMacro(NormalPower, double);
   vtkSetClampMacro(DepthEpsilon, double, 1e-6, 1e6);
@@ -234,24 +233,18 @@ protected:
 
   vtkRenderPass* DelegatePass = nullptr;
   vtkPolyData* Proxies = nullptr;
+  vtkSmartPointer<vtkAlgorithmOutput> ProxiesConnection;
   vtkPGILighting* Lighting = nullptr;
-  std::vector<double> BlockerPlanes; // origin, normal
-  std::vector<double> PlaneAlbedos;  // 3 per plane
+  vtkPGIGISettings* Settings = nullptr;
+  vtkNew<vtkPGIGISettings> Effective;
+  vtkNew<vtkPGIGIBake> Bake;
+  std::vector<std::string> SettingsNotes;
   int ReceiverScale = 2;
   int Upsampling = Bilateral;
-  int Order = 4;
   double ExpansionFactor = 15.0;
   bool AutomaticExpansionFactor = false;
   double ExpansionTolerance = 1.0 / 256.0;
-  bool Shadows = true;
-  bool Indirect = false;
   double IndirectExpansionFactor = 10.0;
-  double DefaultProxyAlbedo[3] = { 0.8, 0.8, 0.8 };
-  char* ProxyAlbedoArrayName = nullptr;
-  bool SelfShadowRules = true;
-  double MinBlockerAngle = 0.002;
-  double HybridMaxNorm = 0.0;
-  double RangeTolerance = 0.5;
   double NormalPower = 32.0;
   double DepthEpsilon = 0.01;
   double FallbackThreshold = 1e-3;
@@ -262,9 +255,22 @@ protected:
   std::string Status;
 
 private:
+  // The stages of Render.
+  bool PrepareInputs(vtkOpenGLRenderWindow* window, std::string& why);
+  void AllocateTargets(vtkOpenGLRenderWindow* window);
+  bool BuildPrograms(vtkOpenGLRenderWindow* window);
+  void SetUpFrame(vtkRenderer* ren);
+  void RenderReceivers(const vtkRenderState* s, vtkOpenGLRenderWindow* window);
+  void SplatShadows(vtkOpenGLRenderWindow* window);
+  void Exponentiate(vtkOpenGLRenderWindow* window);
+  void SplatIndirect(vtkOpenGLRenderWindow* window);
+  void ShadeReceiverBuffer(vtkOpenGLRenderWindow* window);
+  void Upsample(vtkOpenGLRenderWindow* window);
+  void ComposeStatus();
   void Splat(vtkOpenGLRenderWindow* window, const std::string& vs, const std::string& fs,
-    double expansion, float planeTolerance, const float wcdc[16], int proxies, bool albedo);
-  void SetIndirectUniforms(vtkShaderProgram* program, float planeTolerance);
+    double expansion, bool albedo);
+  void SetIndirectUniforms(vtkShaderProgram* program);
+  void Lap(int pass);
 
   struct Internals;
   std::unique_ptr<Internals> GPU;

@@ -13,6 +13,7 @@
 // sphere and per object), one scene.
 #include "pgiOffscreenWindow.h"
 #include "vtkPGIGIPolyDataMapper.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 
@@ -125,23 +126,24 @@ int Effects(vtkRenderWindow* window, int resolution, int proxyCount, double budg
     vtkNew<vtkRenderer> renderer;
     vtkNew<vtkActor> actor;
     vtkNew<vtkPGIGIPolyDataMapper> gi;
+    gi->GetSettings()->IndirectOff(); // the GPU default before the shared settings
     gi->SetProxies(proxies);
     gi->SetLighting(variant == 5 ? lights.Get() : sky.Get());
-    gi->SetOrder(4);
+    gi->GetSettings()->SetOrder(4);
     gi->AlwaysRecomputeOn();
     if (variant > 0)
     {
       const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 }, grey[3] = { 0.5, 0.5, 0.5 };
       gi->AddBlockerPlane(origin, up, grey);
     }
-    gi->SetPlaneBlocking(variant == 2 ? vtkPGIGIPolyDataMapper::PLANES_IN_LOG_SPACE
-                                      : vtkPGIGIPolyDataMapper::PLANES_IN_LIGHT);
-    gi->SetIndirect(variant >= 3);
-    gi->SetIndirectMode(variant >= 6 ? vtkPGIGIPolyDataMapper::INDIRECT_MODE_SHADOWED
-                                     : vtkPGIGIPolyDataMapper::INDIRECT_MODE_UNSHADOWED);
-    gi->SetSphericalLightBlocking(variant == 7 ? vtkPGIGIPolyDataMapper::BLOCKING_PER_OBJECT
-                                               : vtkPGIGIPolyDataMapper::BLOCKING_PER_SPHERE);
-    gi->SetPlaneBounceShadows(variant != 3);
+    gi->GetSettings()->SetPlaneBlocking(
+      variant == 2 ? vtkPGIGISettings::PLANES_IN_LOG_SPACE : vtkPGIGISettings::PLANES_IN_LIGHT);
+    gi->GetSettings()->SetIndirect(variant >= 3);
+    gi->GetSettings()->SetIndirectMode(variant >= 6 ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+                                                    : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+    gi->GetSettings()->SetSphericalLightBlocking(
+      variant == 7 ? vtkPGIGISettings::BLOCKING_PER_OBJECT : vtkPGIGISettings::BLOCKING_PER_SPHERE);
+    gi->GetSettings()->SetPlaneBounceShadows(variant != 3);
     gi->SetInputData(mesh);
     actor->SetMapper(gi);
     renderer->AddActor(actor);
@@ -233,9 +235,10 @@ int main(int argc, char* argv[])
       else
       {
         auto gi = vtkSmartPointer<vtkPGIGIPolyDataMapper>::New();
+        gi->GetSettings()->IndirectOff(); // the GPU default before the shared settings
         gi->SetProxies(proxies);
         gi->SetLighting(lighting);
-        gi->SetOrder(c.Order);
+        gi->GetSettings()->SetOrder(c.Order);
         gi->SetAlwaysRecompute(mode == 2);
         mapper = gi;
       }
@@ -255,9 +258,9 @@ int main(int argc, char* argv[])
     cpu->SetInputData(mesh);
     cpu->SetProxiesData(proxies);
     cpu->SetLighting(lighting);
-    cpu->SetOrder(c.Order);
-    cpu->IndirectOff();
-    cpu->LocalLightsOff();
+    cpu->GetSettings()->SetOrder(c.Order);
+    cpu->GetSettings()->IndirectOff();
+    cpu->GetSettings()->LocalLightsOff();
     cpu->Update();
     const double cpuMs = 1000.0 * std::chrono::duration<double>(Clock::now() - start).count();
     std::printf("| %lld | %d | %d | %.1f | %.1f (%.2f) | %.1f (%.2f) | %.1f | %.0f |\n",

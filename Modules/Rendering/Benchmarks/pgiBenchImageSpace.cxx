@@ -190,10 +190,11 @@ int main(int argc, char* argv[])
     {
       vtkNew<vtkRenderer> renderer;
       vtkNew<vtkPGIGIPolyDataMapper> mapper;
+      mapper->GetSettings()->IndirectOff(); // the GPU default before the shared settings
       mapper->SetInputData(mesh);
       mapper->SetProxies(proxies);
       mapper->SetLighting(lighting);
-      mapper->SetOrder(4);
+      mapper->GetSettings()->SetOrder(4);
       mapper->AlwaysRecomputeOn();
       vtkNew<vtkActor> actor;
       actor->SetMapper(mapper);
@@ -224,18 +225,19 @@ int main(int argc, char* argv[])
         actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
         renderer->AddActor(actor);
         vtkNew<vtkPGIImageSpaceGIPass> pass;
+        pass->GetSettings()->IndirectOff(); // the GPU default before the shared settings
         pass->SetProxies(proxies);
         pass->SetLighting(lighting);
         pass->SetReceiverScale(scale);
         pass->SetUpsampling(mode);
         pass->SetFallback(fallback);
         pass->MeasurePassTimesOn();
-        pass->IndirectOn();
+        pass->GetSettings()->IndirectOn();
         renderer->SetPass(pass);
         window->AddRenderer(renderer);
         setCamera(renderer);
         const Timing t = Measure(window, renderer, pass, budget);
-        pass->IndirectOff();
+        pass->GetSettings()->IndirectOff();
         pass->MeasurePassTimesOff();
         const double shadowsOnly = Measure(window, renderer, pass, budget).Frame;
         window->RemoveRenderer(renderer);

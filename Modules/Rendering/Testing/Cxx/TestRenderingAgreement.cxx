@@ -16,6 +16,7 @@
 #include "pgiRenderingTestScenes.h"
 #include "pgiTesting.h"
 #include "vtkPGIGIPolyDataMapper.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 
@@ -91,7 +92,7 @@ struct Case
   std::vector<std::array<double, 6>> Planes;
   vtkSmartPointer<vtkTransform> Transform; // actor's; the CPU gets moved points
   bool Shadows = true;
-  int PlaneBlocking = vtkPGIGlobalIllumination::PLANES_IN_LIGHT; // both defaults
+  int PlaneBlocking = vtkPGIGISettings::PLANES_IN_LIGHT; // both defaults
   bool Indirect = false;
   bool PlaneBounceShadows = true; // both defaults
   bool Shadowed = false;          // INDIRECT_MODE_SHADOWED (spherical lights)
@@ -107,22 +108,23 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
   vtkPGILighting* lighting = c.Lighting ? c.Lighting.Get() : sky;
   const bool local = !lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty();
   vtkNew<vtkPGIGIPolyDataMapper> mapper;
+  mapper->GetSettings()->IndirectOff(); // the GPU default before the shared settings
   mapper->SetInputData(c.Receivers);
   mapper->SetProxies(c.Proxies);
   mapper->SetLighting(lighting);
-  mapper->SetOrder(order);
-  mapper->SetShadows(c.Shadows);
+  mapper->GetSettings()->SetOrder(order);
+  mapper->GetSettings()->SetShadows(c.Shadows);
   mapper->CaptureVisibilityOn();
-  if (c.PlaneBlocking != vtkPGIGIPolyDataMapper::PLANES_IN_LIGHT)
+  if (c.PlaneBlocking != vtkPGIGISettings::PLANES_IN_LIGHT)
   {
-    mapper->SetPlaneBlocking(c.PlaneBlocking);
+    mapper->GetSettings()->SetPlaneBlocking(c.PlaneBlocking);
   }
-  mapper->SetIndirect(c.Indirect);
-  mapper->SetIndirectMode(c.Shadowed ? vtkPGIGIPolyDataMapper::INDIRECT_MODE_SHADOWED
-                                     : vtkPGIGIPolyDataMapper::INDIRECT_MODE_UNSHADOWED);
-  mapper->SetSphericalLightBlocking(c.PerObject ? vtkPGIGIPolyDataMapper::BLOCKING_PER_OBJECT
-                                                : vtkPGIGIPolyDataMapper::BLOCKING_PER_SPHERE);
-  mapper->SetPlaneBounceShadows(c.PlaneBounceShadows);
+  mapper->GetSettings()->SetIndirect(c.Indirect);
+  mapper->GetSettings()->SetIndirectMode(c.Shadowed ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+                                                    : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+  mapper->GetSettings()->SetSphericalLightBlocking(
+    c.PerObject ? vtkPGIGISettings::BLOCKING_PER_OBJECT : vtkPGIGISettings::BLOCKING_PER_SPHERE);
+  mapper->GetSettings()->SetPlaneBounceShadows(c.PlaneBounceShadows);
   for (const auto& p : c.Planes)
   {
     mapper->AddBlockerPlane(p.data(), p.data() + 3, c.PlaneAlbedo.data());
@@ -161,19 +163,19 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
     gi->SetInputData(cpuInput);
     gi->SetProxiesData(c.Proxies);
     gi->SetLighting(lighting);
-    gi->SetOrder(order);
-    gi->SetShadows(c.Shadows);
-    gi->SetIndirect(c.Indirect);
-    gi->SetIndirectMode(c.Shadowed ? vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED
-                                   : vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED);
-    gi->SetSphericalLightBlocking(c.PerObject ? vtkPGIGlobalIllumination::BLOCKING_PER_OBJECT
-                                              : vtkPGIGlobalIllumination::BLOCKING_PER_SPHERE);
-    gi->SetPlaneBounceShadows(c.PlaneBounceShadows);
-    gi->SetLocalLights(local);
-    gi->SetShadingPath(path);
-    if (c.PlaneBlocking != vtkPGIGlobalIllumination::PLANES_IN_LIGHT)
+    gi->GetSettings()->SetOrder(order);
+    gi->GetSettings()->SetShadows(c.Shadows);
+    gi->GetSettings()->SetIndirect(c.Indirect);
+    gi->GetSettings()->SetIndirectMode(c.Shadowed ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+                                                  : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+    gi->GetSettings()->SetSphericalLightBlocking(
+      c.PerObject ? vtkPGIGISettings::BLOCKING_PER_OBJECT : vtkPGIGISettings::BLOCKING_PER_SPHERE);
+    gi->GetSettings()->SetPlaneBounceShadows(c.PlaneBounceShadows);
+    gi->GetSettings()->SetLocalLights(local);
+    gi->GetSettings()->SetShadingPath(path);
+    if (c.PlaneBlocking != vtkPGIGISettings::PLANES_IN_LIGHT)
     {
-      gi->SetPlaneBlocking(c.PlaneBlocking);
+      gi->GetSettings()->SetPlaneBlocking(c.PlaneBlocking);
     }
     for (const auto& p : c.Planes)
     {
@@ -182,8 +184,8 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
     gi->Update();
     return vtkSmartPointer<vtkPolyData>(gi->GetOutput());
   };
-  vtkSmartPointer<vtkPolyData> matrix = run(vtkPGIGlobalIllumination::SHADING_PRODUCT_MATRIX);
-  vtkSmartPointer<vtkPolyData> table = run(vtkPGIGlobalIllumination::SHADING_TABLE);
+  vtkSmartPointer<vtkPolyData> matrix = run(vtkPGIGISettings::SHADING_PRODUCT_MATRIX);
+  vtkSmartPointer<vtkPolyData> table = run(vtkPGIGISettings::SHADING_TABLE);
   vtkDataArray* cpu = matrix->GetPointData()->GetArray("Radiance");
   vtkDataArray* cpuTable = table->GetPointData()->GetArray("Radiance");
   vtkDataArray* cpuIndirect =
@@ -393,7 +395,7 @@ int TestRenderingAgreement(int, char*[])
   {
     Case logSpace = *base;
     logSpace.Name = base->Name + ", log space";
-    logSpace.PlaneBlocking = vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE;
+    logSpace.PlaneBlocking = vtkPGIGISettings::PLANES_IN_LOG_SPACE;
     Compare(window, lighting, logSpace, 4, 1e-4, 1e-4, strict);
   }
 
@@ -424,7 +426,7 @@ int TestRenderingAgreement(int, char*[])
   }
   Case bounceLog = bounce;
   bounceLog.Name = "indirect, log space";
-  bounceLog.PlaneBlocking = vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE;
+  bounceLog.PlaneBlocking = vtkPGIGISettings::PLANES_IN_LOG_SPACE;
   Compare(window, lighting, bounceLog, 4, 1e-4, 1e-4, strict);
   Case bounceOpen = bounce;
   bounceOpen.Name = "indirect, open plane bounce";
@@ -472,7 +474,7 @@ int TestRenderingAgreement(int, char*[])
   }
   Case shadowedLog = shadowed;
   shadowedLog.Name = "shadowed, log space";
-  shadowedLog.PlaneBlocking = vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE;
+  shadowedLog.PlaneBlocking = vtkPGIGISettings::PLANES_IN_LOG_SPACE;
   Compare(window, lighting, shadowedLog, 4, 1e-4, 1e-4, strict);
   Case shadowedLit = lit;
   shadowedLit.Name = "shadowed, local lights";

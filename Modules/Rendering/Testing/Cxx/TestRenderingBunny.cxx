@@ -11,6 +11,7 @@
 #include "pgiTesting.h"
 #include "vtkPGIEXRReader.h"
 #include "vtkPGIGIPolyDataMapper.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 #include "vtkPGIOFFReader.h"
@@ -68,15 +69,17 @@ int TestRenderingBunny(int argc, char* argv[])
 
   const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
   vtkNew<vtkPGIGIPolyDataMapper> bunnyMapper, groundMapper;
+  bunnyMapper->GetSettings()->IndirectOff();  // the GPU default before the shared settings
+  groundMapper->GetSettings()->IndirectOff(); // the GPU default before the shared settings
   bunnyMapper->SetInputData(bunny);
   bunnyMapper->AddBlockerPlane(origin, up);
   groundMapper->SetInputConnection(ground->GetOutputPort());
-  groundMapper->SetAlbedo(0.5, 0.5, 0.5);
+  groundMapper->GetSettings()->SetDefaultAlbedo(0.5, 0.5, 0.5);
   for (vtkPGIGIPolyDataMapper* m : { bunnyMapper.Get(), groundMapper.Get() })
   {
     m->SetProxies(proxies);
     m->SetLighting(lighting);
-    m->SetOrder(4);
+    m->GetSettings()->SetOrder(4);
     m->SetExposure(0.6);
   }
   vtkNew<vtkActor> bunnyActor, groundActor;
@@ -105,10 +108,10 @@ int TestRenderingBunny(int argc, char* argv[])
   cpu->SetInputData(bunny);
   cpu->SetProxiesData(proxies);
   cpu->SetLighting(lighting);
-  cpu->SetOrder(4);
-  cpu->IndirectOff();
-  cpu->LocalLightsOff();
-  cpu->SetShadingPath(vtkPGIGlobalIllumination::SHADING_PRODUCT_MATRIX);
+  cpu->GetSettings()->SetOrder(4);
+  cpu->GetSettings()->IndirectOff();
+  cpu->GetSettings()->LocalLightsOff();
+  cpu->GetSettings()->SetShadingPath(vtkPGIGISettings::SHADING_PRODUCT_MATRIX);
   cpu->AddBlockerPlane(origin, up);
   cpu->Update();
   vtkDataArray* reference = cpu->GetOutput()->GetPointData()->GetArray("DirectShadowed");

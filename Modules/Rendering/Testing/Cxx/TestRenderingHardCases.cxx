@@ -13,6 +13,7 @@
 #include "pgiOffscreenWindow.h"
 #include "pgiTesting.h"
 #include "vtkPGIGIPolyDataMapper.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGIImageSpaceGIPass.h"
 
@@ -46,6 +47,7 @@ vtkSmartPointer<vtkFloatArray> RunGPU(vtkRenderWindow* window, const pgitest::Ha
   vtkCommand* errors = nullptr)
 {
   vtkNew<vtkPGIGIPolyDataMapper> mapper;
+  mapper->GetSettings()->IndirectOff(); // the GPU default before the shared settings
   if (errors)
   {
     mapper->AddObserver(vtkCommand::ErrorEvent, errors);
@@ -55,14 +57,14 @@ vtkSmartPointer<vtkFloatArray> RunGPU(vtkRenderWindow* window, const pgitest::Ha
   mapper->SetLighting(lighting);
   const double origin[3] = { 0, 0, ground }, up[3] = { 0, 0, 1 }, grey[3] = { 0.5, 0.5, 0.5 };
   mapper->AddBlockerPlane(origin, up, grey);
-  mapper->SetShadows(mode != nullptr);
-  mapper->SetIndirect(mode && mode->Indirect);
-  mapper->SetIndirectMode(mode && mode->Shadowed
-      ? vtkPGIGIPolyDataMapper::INDIRECT_MODE_SHADOWED
-      : vtkPGIGIPolyDataMapper::INDIRECT_MODE_UNSHADOWED);
-  mapper->SetSphericalLightBlocking(mode && mode->PerObject
-      ? vtkPGIGIPolyDataMapper::BLOCKING_PER_OBJECT
-      : vtkPGIGIPolyDataMapper::BLOCKING_PER_SPHERE);
+  mapper->GetSettings()->SetShadows(mode != nullptr);
+  mapper->GetSettings()->SetIndirect(mode && mode->Indirect);
+  mapper->GetSettings()->SetIndirectMode(mode && mode->Shadowed
+      ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+      : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+  mapper->GetSettings()->SetSphericalLightBlocking(mode && mode->PerObject
+      ? vtkPGIGISettings::BLOCKING_PER_OBJECT
+      : vtkPGIGISettings::BLOCKING_PER_SPHERE);
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   vtkNew<vtkRenderer> renderer;
@@ -91,12 +93,12 @@ vtkSmartPointer<vtkPolyData> RunCPU(
   gi->SetLighting(lighting);
   const double origin[3] = { 0, 0, Ground }, up[3] = { 0, 0, 1 }, grey[3] = { 0.5, 0.5, 0.5 };
   gi->AddBlockerPlane(origin, up, grey);
-  gi->SetShadingPath(vtkPGIGlobalIllumination::SHADING_PRODUCT_MATRIX);
-  gi->SetIndirect(mode.Indirect);
-  gi->SetIndirectMode(mode.Shadowed ? vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED
-                                    : vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED);
-  gi->SetSphericalLightBlocking(mode.PerObject ? vtkPGIGlobalIllumination::BLOCKING_PER_OBJECT
-                                               : vtkPGIGlobalIllumination::BLOCKING_PER_SPHERE);
+  gi->GetSettings()->SetShadingPath(vtkPGIGISettings::SHADING_PRODUCT_MATRIX);
+  gi->GetSettings()->SetIndirect(mode.Indirect);
+  gi->GetSettings()->SetIndirectMode(mode.Shadowed ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+                                                   : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+  gi->GetSettings()->SetSphericalLightBlocking(
+    mode.PerObject ? vtkPGIGISettings::BLOCKING_PER_OBJECT : vtkPGIGISettings::BLOCKING_PER_SPHERE);
   gi->Update();
   return gi->GetOutput();
 }
@@ -291,11 +293,12 @@ int TestRenderingHardCases(int, char*[])
     renderer->GetActiveCamera()->SetViewUp(0, 0, 1);
     renderer->ResetCameraClippingRange();
     vtkNew<vtkPGIImageSpaceGIPass> pass;
+    pass->GetSettings()->IndirectOff(); // the GPU default before the shared settings
     pass->SetProxies(scene.Proxies);
     pass->SetLighting(lighting);
     const double origin[3] = { 0, 0, Ground }, up[3] = { 0, 0, 1 }, grey[3] = { 0.5, 0.5, 0.5 };
     pass->AddBlockerPlane(origin, up, grey);
-    pass->IndirectOn();
+    pass->GetSettings()->IndirectOn();
     pass->SetReceiverScale(2);
     renderer->SetPass(pass);
     window->AddRenderer(renderer);

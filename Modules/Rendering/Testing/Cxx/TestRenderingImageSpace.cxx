@@ -13,6 +13,7 @@
 #include "pgiSHBasis.h"
 #include "pgiTesting.h"
 #include "vtkPGIGIPolyDataMapper.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGIImageSpaceGIPass.h"
 #include "vtkPGILighting.h"
 
@@ -149,19 +150,21 @@ int TestRenderingImageSpace(int argc, char* argv[])
 
   // Per-vertex reference.
   vtkNew<vtkPGIGIPolyDataMapper> planeGI, ballGI;
+  planeGI->GetSettings()->IndirectOff(); // the GPU default before the shared settings
+  ballGI->GetSettings()->IndirectOff();  // the GPU default before the shared settings
   planeGI->SetInputConnection(plane->GetOutputPort());
   ballGI->SetInputConnection(ball->GetOutputPort());
   for (vtkPGIGIPolyDataMapper* m : { planeGI.Get(), ballGI.Get() })
   {
     m->SetProxies(proxies);
     m->SetLighting(lighting);
-    m->SetOrder(4);
-    m->SetAlbedo(0.8, 0.8, 0.8);
+    m->GetSettings()->SetOrder(4);
+    m->GetSettings()->SetDefaultAlbedo(0.8, 0.8, 0.8);
     m->SetExposure(0.3); // the sun would saturate most pixels
   }
   ballGI->AddBlockerPlane(origin, up);
   // The image-space pass accumulates the planes in log space.
-  ballGI->SetPlaneBlocking(vtkPGIGIPolyDataMapper::PLANES_IN_LOG_SPACE);
+  ballGI->GetSettings()->SetPlaneBlocking(vtkPGIGISettings::PLANES_IN_LOG_SPACE);
   vtkNew<vtkActor> planeGIActor, ballGIActor;
   planeGIActor->SetMapper(planeGI);
   ballGIActor->SetMapper(ballGI);
@@ -192,6 +195,7 @@ int TestRenderingImageSpace(int argc, char* argv[])
   renderer->AddActor(planeActor);
   renderer->AddActor(ballActor);
   vtkNew<vtkPGIImageSpaceGIPass> pass;
+  pass->GetSettings()->IndirectOff(); // the GPU default before the shared settings
   pass->SetProxies(proxies);
   pass->SetLighting(lighting);
   pass->AddBlockerPlane(origin, up);

@@ -9,6 +9,7 @@
 #include "pgiRenderingTestScenes.h"
 #include "pgiSRGB.h"
 #include "pgiTesting.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGIImageSpaceGIPass.h"
 #include "vtkPGILighting.h"
@@ -119,13 +120,13 @@ int TestRenderingImageSpaceIndirect(int, char*[])
   cpu->SetInputConnection(scene->GetOutputPort());
   cpu->SetProxiesData(proxies);
   cpu->SetLighting(lighting);
-  cpu->SetOrder(4);
-  cpu->IndirectOn();
-  cpu->SetIndirectOperator(vtkPGIGlobalIllumination::INDIRECT_AVERAGED);
-  cpu->LocalLightsOff();
+  cpu->GetSettings()->SetOrder(4);
+  cpu->GetSettings()->IndirectOn();
+  cpu->GetSettings()->SetIndirectOperator(vtkPGIGISettings::INDIRECT_AVERAGED);
+  cpu->GetSettings()->LocalLightsOff();
   cpu->AddBlockerPlane(origin, up, ground);
   // The GPU kernels accumulate planes in log space, as the filter did before.
-  cpu->SetPlaneBlocking(vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE);
+  cpu->GetSettings()->SetPlaneBlocking(vtkPGIGISettings::PLANES_IN_LOG_SPACE);
   cpu->Update();
   vtkPolyData* result = cpu->GetOutput();
   vtkDataArray* direct = result->GetPointData()->GetArray("DirectShadowed");
@@ -193,6 +194,7 @@ int TestRenderingImageSpaceIndirect(int, char*[])
   actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
   renderer->AddActor(actor);
   vtkNew<vtkPGIImageSpaceGIPass> pass;
+  pass->GetSettings()->IndirectOff(); // the GPU default before the shared settings
   pass->SetProxies(proxies);
   pass->SetLighting(lighting);
   pass->AddBlockerPlane(origin, up, ground);
@@ -201,7 +203,7 @@ int TestRenderingImageSpaceIndirect(int, char*[])
   renderer->SetPass(pass);
   window->Render();
   const std::vector<unsigned char> shadowsOnly = Grab(window);
-  pass->IndirectOn();
+  pass->GetSettings()->IndirectOn();
   window->Render();
   std::printf("%s\n", pass->GetStatus().c_str());
   const std::vector<unsigned char> full = Grab(window);

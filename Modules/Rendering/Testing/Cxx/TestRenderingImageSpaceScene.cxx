@@ -85,6 +85,7 @@ int TestRenderingImageSpaceScene(int argc, char* argv[])
 
   vtkSmartPointer<vtkPGILighting> lighting = pgitest::ForestLighting();
   vtkNew<vtkPGIImageSpaceGIPass> pass;
+  pass->GetSettings()->IndirectOff(); // the GPU default before the shared settings
   pass->SetProxies(proxies);
   pass->SetLighting(lighting);
   const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 }, grey[3] = { 0.8, 0.8, 0.8 };
@@ -119,7 +120,7 @@ int TestRenderingImageSpaceScene(int argc, char* argv[])
   window->Render();
   groundColour(nearRed, redOff);
   groundColour(nearGreen, greenOff);
-  pass->IndirectOn();
+  pass->GetSettings()->IndirectOn();
   window->Render();
   std::printf("%s\n", pass->GetStatus().c_str());
   groundColour(nearRed, redOn);

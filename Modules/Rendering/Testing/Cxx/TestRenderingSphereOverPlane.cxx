@@ -63,6 +63,8 @@ int TestRenderingSphereOverPlane(int argc, char* argv[])
   vtkNew<vtkPGILighting> lighting; // uniform white sky
 
   vtkNew<vtkPGIGIPolyDataMapper> planeMapper, ballMapper;
+  planeMapper->GetSettings()->IndirectOff(); // the GPU default before the shared settings
+  ballMapper->GetSettings()->IndirectOff();  // the GPU default before the shared settings
   planeMapper->SetInputConnection(plane->GetOutputPort());
   ballMapper->SetInputConnection(ball->GetOutputPort());
   const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
@@ -70,7 +72,7 @@ int TestRenderingSphereOverPlane(int argc, char* argv[])
   {
     m->SetProxies(proxies);
     m->SetLighting(lighting);
-    m->SetOrder(4);
+    m->GetSettings()->SetOrder(4);
   }
   ballMapper->AddBlockerPlane(origin, up);
   vtkNew<vtkActor> planeActor, ballActor;

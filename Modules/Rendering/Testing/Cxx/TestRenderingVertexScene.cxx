@@ -11,6 +11,7 @@
 #include "pgiOffscreenWindow.h"
 #include "pgiTesting.h"
 #include "vtkPGIGIPolyDataMapper.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGILighting.h"
 
 #include "vtkActor.h"
@@ -80,11 +81,12 @@ int TestRenderingVertexScene(int argc, char* argv[])
   for (const Object& o : scene)
   {
     auto mapper = vtkSmartPointer<vtkPGIGIPolyDataMapper>::New();
+    mapper->GetSettings()->IndirectOff(); // the GPU default before the shared settings
     mapper->SetInputData(o.Mesh);
     mapper->SetProxies(proxies);
     mapper->SetLighting(lighting);
     mapper->AddBlockerPlane(origin, up, grey);
-    mapper->SetAlbedo(o.Albedo[0], o.Albedo[1], o.Albedo[2]);
+    mapper->GetSettings()->SetDefaultAlbedo(o.Albedo[0], o.Albedo[1], o.Albedo[2]);
     mapper->SetExposure(0.6);
     vtkNew<vtkActor> actor;
     actor->SetMapper(mapper);
@@ -134,21 +136,20 @@ int TestRenderingVertexScene(int argc, char* argv[])
   groundRadiance(nearRed, redOff);
   groundRadiance(nearGreen, greenOff);
   int image = vtkTesting::PASSED;
-  for (int mode : { vtkPGIGIPolyDataMapper::INDIRECT_MODE_UNSHADOWED,
-         vtkPGIGIPolyDataMapper::INDIRECT_MODE_SHADOWED })
+  for (int mode :
+    { vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED, vtkPGIGISettings::INDIRECT_MODE_SHADOWED })
   {
     for (auto& mapper : mappers)
     {
-      mapper->IndirectOn();
-      mapper->SetIndirectMode(mode);
+      mapper->GetSettings()->IndirectOn();
+      mapper->GetSettings()->SetIndirectMode(mode);
     }
     window->Render();
     std::printf("%s\n", mappers.back()->GetGIStatus().c_str());
     double redOn[3], greenOn[3];
     groundRadiance(nearRed, redOn);
     groundRadiance(nearGreen, greenOn);
-    const char* name =
-      mode == vtkPGIGIPolyDataMapper::INDIRECT_MODE_SHADOWED ? "shadowed" : "unshadowed";
+    const char* name = mode == vtkPGIGISettings::INDIRECT_MODE_SHADOWED ? "shadowed" : "unshadowed";
     std::printf("%s bounce: ground by the red ball %.4f %.4f %.4f -> %.4f %.4f %.4f; by the "
                 "green ball %.4f %.4f %.4f -> %.4f %.4f %.4f\n",
       name, redOff[0], redOff[1], redOff[2], redOn[0], redOn[1], redOn[2], greenOff[0], greenOff[1],

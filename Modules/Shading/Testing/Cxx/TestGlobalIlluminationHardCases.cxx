@@ -7,6 +7,7 @@
 // the unshadowed light (+ 0.5 for the bounce); sweeps of receivers through
 // spheres show no jump in the total radiance; the scene at scale 1e-4 and
 // 1e4 gives the same radiance with the indirect light on.
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 
 #include "pgiHardScenes.h"
@@ -23,16 +24,16 @@ struct Mode
   int IndirectMode, Operator, Blocking;
 };
 const Mode Modes[] = {
-  { "unshadowed, point-sampled", vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED,
-    vtkPGIGlobalIllumination::INDIRECT_POINT_SAMPLED, 0 },
-  { "unshadowed, averaged", vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED,
-    vtkPGIGlobalIllumination::INDIRECT_AVERAGED, 0 },
-  { "unshadowed, exact", vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED,
-    vtkPGIGlobalIllumination::INDIRECT_EXACT, 0 },
-  { "shadowed, per sphere", vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED,
-    vtkPGIGlobalIllumination::INDIRECT_AVERAGED, vtkPGIGlobalIllumination::BLOCKING_PER_SPHERE },
-  { "shadowed, per object", vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED,
-    vtkPGIGlobalIllumination::INDIRECT_AVERAGED, vtkPGIGlobalIllumination::BLOCKING_PER_OBJECT },
+  { "unshadowed, point-sampled", vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED,
+    vtkPGIGISettings::INDIRECT_POINT_SAMPLED, 0 },
+  { "unshadowed, averaged", vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED,
+    vtkPGIGISettings::INDIRECT_AVERAGED, 0 },
+  { "unshadowed, exact", vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED,
+    vtkPGIGISettings::INDIRECT_EXACT, 0 },
+  { "shadowed, per sphere", vtkPGIGISettings::INDIRECT_MODE_SHADOWED,
+    vtkPGIGISettings::INDIRECT_AVERAGED, vtkPGIGISettings::BLOCKING_PER_SPHERE },
+  { "shadowed, per object", vtkPGIGISettings::INDIRECT_MODE_SHADOWED,
+    vtkPGIGISettings::INDIRECT_AVERAGED, vtkPGIGISettings::BLOCKING_PER_OBJECT },
 };
 
 vtkSmartPointer<vtkPolyData> Run(const pgitest::HardScene& scene, vtkPGILighting* lighting,
@@ -46,16 +47,16 @@ vtkSmartPointer<vtkPolyData> Run(const pgitest::HardScene& scene, vtkPGILighting
   gi->AddBlockerPlane(origin, up, grey);
   if (mode)
   {
-    gi->IndirectOn();
-    gi->SetIndirectMode(mode->IndirectMode);
-    gi->SetIndirectOperator(mode->Operator);
-    gi->SetSphericalLightBlocking(mode->Blocking);
+    gi->GetSettings()->IndirectOn();
+    gi->GetSettings()->SetIndirectMode(mode->IndirectMode);
+    gi->GetSettings()->SetIndirectOperator(mode->Operator);
+    gi->GetSettings()->SetSphericalLightBlocking(mode->Blocking);
   }
   else
   {
     // The bound's reference: no shadows, no bounce.
-    gi->ShadowsOff();
-    gi->IndirectOff();
+    gi->GetSettings()->ShadowsOff();
+    gi->GetSettings()->IndirectOff();
   }
   gi->Update();
   return gi->GetOutput();

@@ -4,6 +4,7 @@
 // "Plan" field array), and skipping changes nothing: the output equals the
 // one with the effect switched off, bit for bit, or (blockers below
 // MinBlockerAngle, skipped per receiver) stays within the stated bound.
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 
@@ -109,7 +110,7 @@ int TestGlobalIlluminationPlan(int, char*[])
       once, plan ? static_cast<long long>(plan->GetNumberOfValues()) : -1LL);
     PGI_CHECK(once == 1);
     PGI_CHECK(plan && plan->GetNumberOfValues() == static_cast<vtkIdType>(gi->GetPlan().size()));
-    gi->SetOrder(3);
+    gi->GetSettings()->SetOrder(3);
     gi->Update();
     PGI_CHECK(Executions == 2); // a knob
     sky->SetUniformRadiance(0.5, 0.5, 0.5);
@@ -135,9 +136,9 @@ int TestGlobalIlluminationPlan(int, char*[])
     gi->SetProxiesData(proxies);
     gi->SetLighting(lighting);
     gi->AddBlockerPlane(origin, up, black);
-    gi->SetIndirect(indirect);
-    gi->SetIndirectMode(mode);
-    gi->SetLocalLights(local);
+    gi->GetSettings()->SetIndirect(indirect);
+    gi->GetSettings()->SetIndirectMode(mode);
+    gi->GetSettings()->SetLocalLights(local);
     gi->Update();
     if (keep)
     {
@@ -157,8 +158,8 @@ int TestGlobalIlluminationPlan(int, char*[])
     std::printf("%s: largest difference to the effect switched off %.3g\n", what, worst);
     PGI_CHECK(worst == 0.0);
   };
-  const int unshadowed = vtkPGIGlobalIllumination::INDIRECT_MODE_UNSHADOWED;
-  const int shadowed = vtkPGIGlobalIllumination::INDIRECT_MODE_SHADOWED;
+  const int unshadowed = vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
+  const int shadowed = vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
   vtkSmartPointer<vtkPolyData> dark = WithAlbedo(scene.Proxies, 0.0);
   vtkSmartPointer<vtkPolyData> off = run(dark, sky, false, unshadowed, false);
   vtkSmartPointer<vtkPGIGlobalIllumination> gi;
@@ -205,7 +206,7 @@ int TestGlobalIlluminationPlan(int, char*[])
       f->SetProxiesData(tiny);
       f->SetLighting(sky);
     }
-    exact->SetMinBlockerAngle(0.0);
+    exact->GetSettings()->SetMinBlockerAngle(0.0);
     exact->Update();
     fast->Update();
     PGI_CHECK(PlanSays(fast, " 0 of "));

@@ -76,7 +76,7 @@ int TestIndirectLight(int, char*[])
     gi->SetInputConnection(plane->GetOutputPort());
     gi->SetProxiesData(ball);
     gi->AddBlockerPlane(origin, up, grey);
-    gi->SetIndirectOperator(op);
+    gi->GetSettings()->SetIndirectOperator(op);
     gi->Update();
     vtkDataArray* indirect = gi->GetOutput()->GetPointData()->GetArray("IndirectProxy");
     errors[op] = RelativeRMSE(indirect, refIndirect);
@@ -103,7 +103,8 @@ int TestIndirectLight(int, char*[])
     vtkNew<vtkPGIGlobalIllumination> gi;
     gi->SetInputConnection(plane->GetOutputPort());
     gi->SetLighting(lighting);
-    gi->SetDefaultAlbedo(1, 1, 1);
+    gi->GetSettings()->SetDefaultAlbedo(1, 1, 1);
+    gi->GetSettings()->SetDefaultProxyAlbedo(1, 1, 1);
     gi->Update();
     vtkPolyData* out = gi->GetOutput();
     vtkDataArray* local = out->GetPointData()->GetArray("LocalLights");

@@ -10,6 +10,7 @@
 #include "pgiEnvironmentShading.h"
 #include "pgiSoftShadows.h"
 #include "pgiTesting.h"
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 #include "vtkPGIReferenceIllumination.h"
@@ -17,9 +18,9 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
+#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
-#include "vtkPlaneSource.h"
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
 
@@ -38,13 +39,13 @@ int TestPlanes(int, char*[])
     const int n2 = order * order;
     std::vector<double> r(n2), g(n2), b(n2), v(n2);
     LightAbovePlanes(sky, order, up, 1, r.data(), g.data(), b.data(), v.data());
-    const EnvironmentShading shading(order, r.data(), g.data(), b.data(),
-      EnvironmentShading::Path::ProductMatrix);
+    const EnvironmentShading shading(
+      order, r.data(), g.data(), b.data(), EnvironmentShading::Path::ProductMatrix);
     // The old route, for the report: exp of the clipped cap log.
     std::vector<double> full(n2), fr(n2), fg(n2), fb(n2);
     sky.ProjectSH(order, fr.data(), fg.data(), fb.data());
-    const EnvironmentShading open(order, fr.data(), fg.data(), fb.data(),
-      EnvironmentShading::Path::ProductMatrix);
+    const EnvironmentShading open(
+      order, fr.data(), fg.data(), fb.data(), EnvironmentShading::Path::ProductMatrix);
     SoftShadowSettings settings;
     settings.Order = order;
     SoftShadows shadows(settings);
@@ -93,16 +94,16 @@ int TestPlanes(int, char*[])
   proxy->GetPointData()->AddArray(radius);
   const double o[3] = { 0, 0, 0 }, z[3] = { 0, 0, 1 };
   double topInLight = -1.0, topInLog = -1.0;
-  for (int mode : { vtkPGIGlobalIllumination::PLANES_IN_LIGHT,
-         vtkPGIGlobalIllumination::PLANES_IN_LOG_SPACE })
+  for (int mode : { vtkPGIGISettings::PLANES_IN_LIGHT, vtkPGIGISettings::PLANES_IN_LOG_SPACE })
   {
     vtkNew<vtkPGIGlobalIllumination> gi;
     gi->SetInputConnection(ball->GetOutputPort());
     gi->SetProxiesData(proxy);
     gi->AddBlockerPlane(o, z);
-    gi->SetPlaneBlocking(mode);
-    gi->SetDefaultAlbedo(0.8, 0.8, 0.8);
-    gi->IndirectOff();
+    gi->GetSettings()->SetPlaneBlocking(mode);
+    gi->GetSettings()->SetDefaultAlbedo(0.8, 0.8, 0.8);
+    gi->GetSettings()->SetDefaultProxyAlbedo(0.8, 0.8, 0.8);
+    gi->GetSettings()->IndirectOff();
     gi->Update();
     vtkPolyData* out = gi->GetOutput();
     vtkDataArray* direct = out->GetPointData()->GetArray("DirectShadowed");
@@ -119,8 +120,8 @@ int TestPlanes(int, char*[])
       }
     }
     std::printf("ball over a plane, top vertex: %.6f (exact 0.8), planes %s\n", top,
-      mode == vtkPGIGlobalIllumination::PLANES_IN_LIGHT ? "in the light" : "in log space");
-    (mode == vtkPGIGlobalIllumination::PLANES_IN_LIGHT ? topInLight : topInLog) = top;
+      mode == vtkPGIGISettings::PLANES_IN_LIGHT ? "in the light" : "in log space");
+    (mode == vtkPGIGISettings::PLANES_IN_LIGHT ? topInLight : topInLog) = top;
   }
   // In the light the plane is exact; in log space its cap at order 4 rings
   // into the upper hemisphere (measured 0.7224). Both asserted, so a filter
@@ -152,7 +153,7 @@ int TestPlanes(int, char*[])
     gi->SetProxiesData(proxy);
     gi->SetLighting(uniformSky);
     gi->AddBlockerPlane(o, z, albedo);
-    gi->SetPlaneBounceShadows(scaled);
+    gi->GetSettings()->SetPlaneBounceShadows(scaled);
     gi->Update();
     vtkPolyData* out = gi->GetOutput();
     vtkDataArray* bounce = out->GetPointData()->GetArray("IndirectProxy");

@@ -10,6 +10,7 @@
 //     reference; the Plan says what ran; modes Off and skipped cases;
 //  4. a spherical light (black sky) lighting the samples: the bounce
 //     against the reference (its mean; see the note on ringing).
+#include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 
 #include "pgiTesting.h"
@@ -219,6 +220,9 @@ struct Run
   std::vector<std::string> Plan;
 };
 
+// Shade's mode for no indirect light.
+constexpr int IndirectNone = -1;
+
 Run Shade(vtkAlgorithmOutput* receivers, vtkPolyData* proxies, int mode, int blocking)
 {
   vtkNew<vtkPGIGlobalIllumination> gi;
@@ -226,8 +230,9 @@ Run Shade(vtkAlgorithmOutput* receivers, vtkPolyData* proxies, int mode, int blo
   gi->SetProxiesData(proxies);
   const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
   gi->AddBlockerPlane(origin, up);
-  gi->SetIndirectMode(mode);
-  gi->SetSphericalLightBlocking(blocking);
+  gi->GetSettings()->SetIndirect(mode != IndirectNone);
+  gi->GetSettings()->SetIndirectMode(mode == IndirectNone ? 0 : mode);
+  gi->GetSettings()->SetSphericalLightBlocking(blocking);
   const auto start = std::chrono::steady_clock::now();
   gi->Update();
   Run run;
@@ -287,12 +292,12 @@ int Timing()
   reference->SetSamples(1024);
   reference->Update();
   vtkDataArray* ref = reference->GetOutput()->GetPointData()->GetArray("IndirectOneBounce");
-  const Run unshadowed =
-    Shade(ground.Patch->GetOutputPort(), sampler->GetOutput(), GI::INDIRECT_MODE_UNSHADOWED, 0);
+  const Run unshadowed = Shade(ground.Patch->GetOutputPort(), sampler->GetOutput(),
+    vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED, 0);
   const Run perSphere = Shade(ground.Patch->GetOutputPort(), sampler->GetOutput(),
-    GI::INDIRECT_MODE_SHADOWED, GI::BLOCKING_PER_SPHERE);
+    vtkPGIGISettings::INDIRECT_MODE_SHADOWED, vtkPGIGISettings::BLOCKING_PER_SPHERE);
   const Run perObject = Shade(ground.Patch->GetOutputPort(), sampler->GetOutput(),
-    GI::INDIRECT_MODE_SHADOWED, GI::BLOCKING_PER_OBJECT);
+    vtkPGIGISettings::INDIRECT_MODE_SHADOWED, vtkPGIGISettings::BLOCKING_PER_OBJECT);
   const double eu = RelativeRMSE(unshadowed.Output->GetPointData()->GetArray("IndirectProxy"), ref);
   const double es =
     RelativeRMSE(perSphere.Output->GetPointData()->GetArray("IndirectShadowed"), ref);
@@ -315,10 +320,12 @@ int Timing()
     }
     return t;
   };
-  const double tOff = best(GI::INDIRECT_MODE_OFF, 0);
-  const double tU = best(GI::INDIRECT_MODE_UNSHADOWED, 0);
-  const double tS = best(GI::INDIRECT_MODE_SHADOWED, GI::BLOCKING_PER_SPHERE);
-  const double tO = best(GI::INDIRECT_MODE_SHADOWED, GI::BLOCKING_PER_OBJECT);
+  const double tOff = best(IndirectNone, 0);
+  const double tU = best(vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED, 0);
+  const double tS =
+    best(vtkPGIGISettings::INDIRECT_MODE_SHADOWED, vtkPGIGISettings::BLOCKING_PER_SPHERE);
+  const double tO =
+    best(vtkPGIGISettings::INDIRECT_MODE_SHADOWED, vtkPGIGISettings::BLOCKING_PER_OBJECT);
   std::printf("6 peanuts + dark ball (13 spheres, 7 objects), order 4, HYB, ground of %d "
               "receivers (error on 825, reference 1024 samples), vtkSMPTools %s, %d threads:\n",
     static_cast<int>(n), vtkSMPTools::GetBackend(), vtkSMPTools::GetEstimatedNumberOfThreads());
@@ -371,16 +378,17 @@ int Timing()
   cowReference->SetSamples(1024);
   cowReference->Update();
   vtkDataArray* cowRef = cowReference->GetOutput()->GetPointData()->GetArray("IndirectOneBounce");
-  const double cowU = RelativeRMSE(
-    Shade(ground.Patch->GetOutputPort(), cowSampler->GetOutput(), GI::INDIRECT_MODE_UNSHADOWED, 0)
-      .Output->GetPointData()
-      ->GetArray("IndirectProxy"),
-    cowRef);
-  const double cowS = RelativeRMSE(Shade(ground.Patch->GetOutputPort(), cowSampler->GetOutput(),
-                                     GI::INDIRECT_MODE_SHADOWED, GI::BLOCKING_PER_SPHERE)
+  const double cowU = RelativeRMSE(Shade(ground.Patch->GetOutputPort(), cowSampler->GetOutput(),
+                                     vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED, 0)
                                      .Output->GetPointData()
-                                     ->GetArray("IndirectShadowed"),
+                                     ->GetArray("IndirectProxy"),
     cowRef);
+  const double cowS =
+    RelativeRMSE(Shade(ground.Patch->GetOutputPort(), cowSampler->GetOutput(),
+                   vtkPGIGISettings::INDIRECT_MODE_SHADOWED, vtkPGIGISettings::BLOCKING_PER_SPHERE)
+                   .Output->GetPointData()
+                   ->GetArray("IndirectShadowed"),
+      cowRef);
   auto bestCow = [&](int mode, int blocking)
   {
     double t = 1e30;
@@ -391,9 +399,10 @@ int Timing()
     }
     return t;
   };
-  const double cOff = bestCow(GI::INDIRECT_MODE_OFF, 0);
-  const double cU = bestCow(GI::INDIRECT_MODE_UNSHADOWED, 0);
-  const double cS = bestCow(GI::INDIRECT_MODE_SHADOWED, GI::BLOCKING_PER_SPHERE);
+  const double cOff = bestCow(IndirectNone, 0);
+  const double cU = bestCow(vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED, 0);
+  const double cS =
+    bestCow(vtkPGIGISettings::INDIRECT_MODE_SHADOWED, vtkPGIGISettings::BLOCKING_PER_SPHERE);
   std::printf("cow, 16 variational spheres (%.2f s), samples (%.3f s; rule 1 %g, rule 2 %g, rule 3 "
               "%g, none %g):\n",
     buildSeconds, sampleSeconds, rules->GetTuple1(0), rules->GetTuple1(1), rules->GetTuple1(2),
@@ -441,8 +450,9 @@ int Timing()
     for (int k = 0; k < 3; ++k)
     {
       const Run run = Shade(source->GetOutputPort(), greySampler->GetOutput(),
-        k == 0 ? GI::INDIRECT_MODE_UNSHADOWED : GI::INDIRECT_MODE_SHADOWED,
-        k == 2 ? GI::BLOCKING_PER_OBJECT : GI::BLOCKING_PER_SPHERE);
+        k == 0 ? vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED
+               : vtkPGIGISettings::INDIRECT_MODE_SHADOWED,
+        k == 2 ? vtkPGIGISettings::BLOCKING_PER_OBJECT : vtkPGIGISettings::BLOCKING_PER_SPHERE);
       vtkDataArray* a =
         run.Output->GetPointData()->GetArray(k == 0 ? "IndirectProxy" : "IndirectShadowed");
       err[k] = RelativeRMSE(a, selfRef);
@@ -498,8 +508,10 @@ int TestShadowedIndirect(int argc, char* argv[])
     vtkNew<GI> gi;
     gi->SetInputData(receivers);
     gi->SetProxiesConnection(sampler->GetOutputPort());
-    gi->SetDefaultAlbedo(1, 1, 1); // receivers; the ball's 0.5 comes from its AlbedoSH
-    gi->SetIndirectModeToShadowed();
+    gi->GetSettings()->SetDefaultAlbedo(
+      1, 1, 1); // receivers; the ball's 0.5 comes from its AlbedoSH
+    gi->GetSettings()->SetDefaultProxyAlbedo(1, 1, 1);
+    gi->GetSettings()->SetIndirectModeToShadowed();
     gi->Update();
     PrintPlan(gi);
     PGI_CHECK(PlanHas(gi, "92 surface samples of 92 (SampleOffset/SampleNormal arrays), AlbedoSH"));
@@ -528,8 +540,9 @@ int TestShadowedIndirect(int argc, char* argv[])
     vtkNew<GI> own;
     own->SetInputData(receivers);
     own->SetProxiesData(Spheres({ 0, 0, 0, 1.0 }, { 0 }, { 0.5 }));
-    own->SetDefaultAlbedo(1, 1, 1);
-    own->SetIndirectModeToShadowed();
+    own->GetSettings()->SetDefaultAlbedo(1, 1, 1);
+    own->GetSettings()->SetDefaultProxyAlbedo(1, 1, 1);
+    own->GetSettings()->SetIndirectModeToShadowed();
     own->Update();
     PGI_CHECK(PlanHas(own, "on the spheres themselves"));
     vtkDataArray* ownBounce = own->GetOutput()->GetPointData()->GetArray("IndirectShadowed");
@@ -542,20 +555,20 @@ int TestShadowedIndirect(int argc, char* argv[])
     vtkNew<GI> black;
     black->SetInputData(receivers);
     black->SetProxiesData(Spheres({ 0, 0, 0, 1.0 }, { 0 }, { 0.0 }));
-    black->SetIndirectModeToShadowed();
+    black->GetSettings()->SetIndirectModeToShadowed();
     black->Update();
     PGI_CHECK(PlanHas(black, "skipped (every spherical light has albedo 0)"));
     PGI_CHECK(
       black->GetOutput()->GetPointData()->GetArray("IndirectShadowed")->GetRange(0)[1] == 0);
     vtkNew<GI> none;
     none->SetInputData(receivers);
-    none->SetIndirectModeToShadowed();
+    none->GetSettings()->SetIndirectModeToShadowed();
     none->Update();
     PGI_CHECK(PlanHas(none, "skipped (no proxies to act as spherical lights)"));
     vtkNew<GI> off;
     off->SetInputData(receivers);
     off->SetProxiesData(Spheres({ 0, 0, 0, 1.0 }, { 0 }, { 0.5 }));
-    off->SetIndirectModeToOff();
+    off->GetSettings()->IndirectOff();
     off->Update();
     PGI_CHECK(PlanHas(off, "indirect light: off"));
     // Hard cases: receivers inside the sphere and a coincident second sphere.
@@ -574,7 +587,7 @@ int TestShadowedIndirect(int argc, char* argv[])
     vtkNew<GI> hard;
     hard->SetInputData(inside);
     hard->SetProxiesData(Spheres({ 0, 0, 0, 1.0, 0, 0, 0, 1.0 }, { 0, 1 }, { 0.5, 0.5 }));
-    hard->SetIndirectModeToShadowed();
+    hard->GetSettings()->SetIndirectModeToShadowed();
     hard->Update();
     vtkDataArray* h = hard->GetOutput()->GetPointData()->GetArray("IndirectShadowed");
     for (vtkIdType i = 0; i < 3; ++i)
@@ -615,10 +628,10 @@ int TestShadowedIndirect(int argc, char* argv[])
       behind.push_back(x[0] > 2.4 && std::fabs(x[1]) < 1.2 ? 1 : 0);
     }
   }
-  const Run unshadowed =
-    Shade(ground.Patch->GetOutputPort(), sampler->GetOutput(), GI::INDIRECT_MODE_UNSHADOWED, 0);
-  const Run shadowed =
-    Shade(ground.Patch->GetOutputPort(), sampler->GetOutput(), GI::INDIRECT_MODE_SHADOWED, 0);
+  const Run unshadowed = Shade(ground.Patch->GetOutputPort(), sampler->GetOutput(),
+    vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED, 0);
+  const Run shadowed = Shade(ground.Patch->GetOutputPort(), sampler->GetOutput(),
+    vtkPGIGISettings::INDIRECT_MODE_SHADOWED, 0);
   vtkDataArray* u = unshadowed.Output->GetPointData()->GetArray("IndirectProxy");
   vtkDataArray* s = shadowed.Output->GetPointData()->GetArray("IndirectShadowed");
   const double eu = RelativeRMSE(u, refIndirect), es = RelativeRMSE(s, refIndirect);
@@ -667,11 +680,11 @@ int TestShadowedIndirect(int argc, char* argv[])
         { 0, 0, 1, 1 }, { 0.9, 0.9, 0.6, 0.6 }));
     sampler2->Update();
     const Run perSphere = Shade(ground.Patch->GetOutputPort(), sampler2->GetOutput(),
-      GI::INDIRECT_MODE_SHADOWED, GI::BLOCKING_PER_SPHERE);
+      vtkPGIGISettings::INDIRECT_MODE_SHADOWED, vtkPGIGISettings::BLOCKING_PER_SPHERE);
     const Run perObject = Shade(ground.Patch->GetOutputPort(), sampler2->GetOutput(),
-      GI::INDIRECT_MODE_SHADOWED, GI::BLOCKING_PER_OBJECT);
-    const Run flat =
-      Shade(ground.Patch->GetOutputPort(), sampler2->GetOutput(), GI::INDIRECT_MODE_UNSHADOWED, 0);
+      vtkPGIGISettings::INDIRECT_MODE_SHADOWED, vtkPGIGISettings::BLOCKING_PER_OBJECT);
+    const Run flat = Shade(ground.Patch->GetOutputPort(), sampler2->GetOutput(),
+      vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED, 0);
     vtkDataArray* ps = perSphere.Output->GetPointData()->GetArray("IndirectShadowed");
     vtkDataArray* po = perObject.Output->GetPointData()->GetArray("IndirectShadowed");
     vtkDataArray* un = flat.Output->GetPointData()->GetArray("IndirectProxy");
@@ -719,9 +732,9 @@ int TestShadowedIndirect(int argc, char* argv[])
       cut->SetProxiesConnection(treeSampler->GetOutputPort());
       const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
       cut->AddBlockerPlane(origin, up);
-      cut->SetIndirectModeToShadowed();
-      cut->SetHierarchyAngle(25);
-      cut->SetReceiversPerCluster(32);
+      cut->GetSettings()->SetIndirectModeToShadowed();
+      cut->GetSettings()->SetHierarchyAngle(25);
+      cut->GetSettings()->SetReceiversPerCluster(32);
       cut->Update();
       PrintPlan(cut);
       PGI_CHECK(PlanHas(cut, "spherical lights cut alike, with reflection ratios"));
@@ -772,7 +785,7 @@ int TestShadowedIndirect(int argc, char* argv[])
     gi->SetLighting(lighting);
     const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
     gi->AddBlockerPlane(origin, up);
-    gi->SetIndirectModeToShadowed();
+    gi->GetSettings()->SetIndirectModeToShadowed();
     gi->Update();
     PGI_CHECK(PlanHas(gi, "(with local lights)"));
     vtkDataArray* lit = gi->GetOutput()->GetPointData()->GetArray("IndirectShadowed");
@@ -803,7 +816,7 @@ int TestShadowedIndirect(int argc, char* argv[])
     PGI_NEAR(meanLit, meanRef, 0.25 * meanRef);
     PGI_BELOW(e, 1.2);
     PGI_BELOW(eAway, 0.45);
-    gi->SetLocalLights(false);
+    gi->GetSettings()->SetLocalLights(false);
     gi->Update();
     PGI_CHECK(PlanHas(gi, "skipped (the environment is black and there are no local lights)"));
   }

@@ -56,7 +56,7 @@ int TestSoftShadows(int, char*[])
     vtkNew<vtkPGIGlobalIllumination> gi;
     gi->SetInputConnection(plane->GetOutputPort());
     gi->SetProxiesData(ball);
-    gi->SetOrder(order);
+    gi->GetSettings()->SetOrder(order);
     gi->Update();
     vtkPolyData* out = gi->GetOutput();
     vtkDataArray* direct = out->GetPointData()->GetArray("DirectShadowed");
@@ -175,7 +175,8 @@ int TestSoftShadows(int, char*[])
     one->GetPointData()->SetNormals(n);
     vtkNew<vtkPGIGlobalIllumination> gi;
     gi->SetInputData(one);
-    gi->SetDefaultAlbedo(1, 1, 1);
+    gi->GetSettings()->SetDefaultAlbedo(1, 1, 1);
+    gi->GetSettings()->SetDefaultProxyAlbedo(1, 1, 1);
     const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
     gi->AddBlockerPlane(origin, up);
     gi->Update();

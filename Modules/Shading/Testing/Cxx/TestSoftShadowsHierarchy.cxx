@@ -169,8 +169,8 @@ int TestSoftShadowsHierarchy(int, char*[])
       gi->SetProxiesData(proxies);
       gi->AddBlockerPlane(wallOrigin, wallNormal, wallAlbedo);
     }
-    cut->SetHierarchyAngle(25);
-    cut->SetReceiversPerCluster(64);
+    cut->GetSettings()->SetHierarchyAngle(25);
+    cut->GetSettings()->SetReceiversPerCluster(64);
     all->Update();
     cut->Update();
     vtkDataArray* a = all->GetOutput()->GetPointData()->GetArray("DirectShadowed");

@@ -1,0 +1,216 @@
+// One settings type and one precompute for every GI consumer:
+// vtkPGIGISettings::Resolve replaces exactly what a backend cannot honour
+// and says each replacement; vtkPGIGIBake rebuilds only when one of its
+// inputs changed, and the filter reuses it across receiver changes; the
+// bake's outputs are the formulas they stand for (response interleave,
+// light above the planes, bad proxies refused with the scene kept).
+#include "vtkPGIGIBake.h"
+#include "vtkPGIGISettings.h"
+#include "vtkPGIGlobalIllumination.h"
+#include "vtkPGILighting.h"
+
+#include "pgiHardScenes.h"
+#include "pgiTesting.h"
+
+#include "vtkDataArray.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSphereSource.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace
+{
+bool Mentions(const std::vector<std::string>& notes, const std::string& text)
+{
+  for (const std::string& n : notes)
+  {
+    if (n.find(text) != std::string::npos)
+    {
+      return true;
+    }
+  }
+  std::printf("no note mentions \"%s\"; notes:\n", text.c_str());
+  for (const std::string& n : notes)
+  {
+    std::printf("  %s\n", n.c_str());
+  }
+  return false;
+}
+
+void TestResolve()
+{
+  vtkNew<vtkPGIGISettings> s, e;
+  std::vector<std::string> notes;
+  // The CPU filter honours everything: nothing replaced, values copied.
+  s->SetOrder(8);
+  s->SetExpMethod(vtkPGIGISettings::EXP_OL);
+  s->SetHierarchyAngle(25);
+  PGI_CHECK(s->Resolve(vtkPGIGlobalIllumination::GetSupport(), 1, e, notes));
+  PGI_CHECK(notes.empty());
+  PGI_CHECK(e->GetOrder() == 8 && e->GetExpMethod() == vtkPGIGISettings::EXP_OL);
+  PGI_NEAR(e->GetHierarchyAngle(), 25.0, 0.0);
+
+  // A GPU-like backend: order 2..6, HYB only, no hierarchy, product matrix.
+  vtkPGIGISettings::Support gpu;
+  gpu.Backend = "test backend";
+  gpu.MaxOrder = 6;
+  gpu.ExpMethods = 1u << vtkPGIGISettings::EXP_HYB;
+  gpu.Hierarchy = false;
+  gpu.ShadingPaths = 1u << vtkPGIGISettings::SHADING_PRODUCT_MATRIX;
+  gpu.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
+  gpu.PlaneBlockings = 1u << vtkPGIGISettings::PLANES_IN_LOG_SPACE;
+  gpu.IndirectModes = 1u << vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
+  notes.clear();
+  PGI_CHECK(!s->Resolve(gpu, 0, e, notes));
+  PGI_CHECK(e->GetOrder() == 6);
+  PGI_CHECK(Mentions(notes, "Order: order 8 is outside 2..6; order 6 runs in the test backend"));
+  PGI_CHECK(e->GetExpMethod() == vtkPGIGISettings::EXP_HYB);
+  PGI_CHECK(Mentions(notes, "ExpMethod: OL is not available; HYB runs"));
+  PGI_CHECK(e->GetHierarchyAngle() == 0.0 && Mentions(notes, "HierarchyAngle"));
+  // The table path is the default: replaced by the product matrix unsaid
+  // (same L*H(N)); no planes: PlaneBlocking is not said either.
+  PGI_CHECK(e->GetShadingPath() == vtkPGIGISettings::SHADING_PRODUCT_MATRIX);
+  PGI_CHECK(e->GetPlaneBlocking() == vtkPGIGISettings::PLANES_IN_LOG_SPACE);
+  PGI_CHECK(notes.size() == 3);
+  // With a plane the planes' mode is said; shadowed bounce -> unshadowed.
+  s->SetIndirectModeToShadowed();
+  notes.clear();
+  s->Resolve(gpu, 1, e, notes);
+  PGI_CHECK(Mentions(notes, "PlaneBlocking: planes in the light is not available"));
+  PGI_CHECK(Mentions(notes,
+    "IndirectMode: shadowed indirect light is not available; "
+    "unshadowed runs"));
+  PGI_CHECK(e->GetIndirectMode() == vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+  // The operator matters for the unshadowed model only.
+  s->SetIndirectModeToUnshadowed();
+  s->SetIndirectOperator(vtkPGIGISettings::INDIRECT_EXACT);
+  notes.clear();
+  s->Resolve(gpu, 0, e, notes);
+  PGI_CHECK(Mentions(notes, "IndirectOperator: exact is not available; the averaged"));
+  s->IndirectOff();
+  notes.clear();
+  s->Resolve(gpu, 0, e, notes);
+  for (const std::string& n : notes)
+  {
+    PGI_CHECK(n.find("IndirectOperator") == std::string::npos);
+  }
+  // Resolve into the same effective object again: no MTime change.
+  const vtkMTimeType t = e->GetMTime();
+  notes.clear();
+  s->Resolve(gpu, 0, e, notes);
+  PGI_CHECK(e->GetMTime() == t);
+  // A backend that ignores receiver albedo says so once it is changed.
+  vtkPGIGISettings::Support pass = gpu;
+  pass.ReceiverAlbedo = false;
+  notes.clear();
+  s->Resolve(pass, 0, e, notes);
+  for (const std::string& n : notes)
+  {
+    PGI_CHECK(n.find("DefaultAlbedo") == std::string::npos); // left at its default
+  }
+  s->SetDefaultAlbedo(0.5, 0.5, 0.5);
+  notes.clear();
+  s->Resolve(pass, 0, e, notes);
+  PGI_CHECK(Mentions(notes, "DefaultAlbedo"));
+}
+
+void TestBakeReuse()
+{
+  vtkNew<vtkPGIGISettings> settings;
+  vtkSmartPointer<vtkPolyData> proxies =
+    pgitest::HardProxies({ { 0, 0, 1.0, 0.5, 0 }, { 0.8, 0, 1.2, 0.3, 0 } });
+  vtkSmartPointer<vtkPGILighting> lighting = pgitest::HardLighting();
+  vtkNew<vtkPGIGIBake> bake;
+  bake->SetSettings(settings);
+  bake->SetProxies(proxies);
+  bake->SetLighting(lighting);
+  const double origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 2 }, grey[3] = { 0.5, 0.5, 0.5 };
+  bake->AddBlockerPlane(origin, up, grey);
+  PGI_CHECK(bake->Update());
+  PGI_CHECK(bake->Update());
+  PGI_CHECK(bake->GetNumberOfBuilds() == 1);
+  const proxygi::BakedScene& b = bake->GetScene();
+  const int n2 = b.Order * b.Order;
+  PGI_CHECK(b.SceneBlockers.Spheres() == 2 && b.SceneBlockers.Planes() == 1);
+  PGI_NEAR(b.SceneBlockers.PlaneNormal[2], 1.0, 1e-7); // normalised
+  PGI_CHECK(b.PlanesInLight && b.Light.size() == 3 * static_cast<std::size_t>(n2));
+  // The light above the ground misses the sky below it: less DC.
+  PGI_CHECK(b.LightAbovePlanes[0] < b.Light[0]);
+  // The response interleave is the channel-major response transposed.
+  for (int i = 0; i < n2; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      PGI_CHECK(b.InterleavedResponse[3 * i + c] == b.Secondary->Response[c * n2 + i]);
+    }
+  }
+  PGI_CHECK(b.RunShadows && b.RunIndirect && b.RunLocal && b.Locals.Count() == 2);
+  PGI_CHECK(b.Kernel.PlanesInLogSpace == false);
+
+  // Each input change rebuilds once; nothing else does.
+  proxies->GetPoints()->SetPoint(1, 0.9, 0, 1.2);
+  proxies->GetPoints()->Modified();
+  PGI_CHECK(bake->Update() && bake->Update());
+  PGI_CHECK(bake->GetNumberOfBuilds() == 2);
+  settings->SetOrder(3);
+  PGI_CHECK(bake->Update() && bake->GetNumberOfBuilds() == 3 && bake->GetScene().Order == 3);
+  lighting->SetUniformRadiance(0.5, 0.5, 0.5);
+  PGI_CHECK(bake->Update() && bake->GetNumberOfBuilds() == 4);
+  bake->RemoveAllBlockerPlanes();
+  PGI_CHECK(bake->Update() && bake->GetNumberOfBuilds() == 5);
+  PGI_CHECK(!bake->GetScene().PlanesInLight);
+
+  // Shadowed mode: the spherical lights after their first pass.
+  settings->SetIndirectModeToShadowed();
+  PGI_CHECK(bake->Update() && bake->GetScene().RunShadowed);
+  PGI_CHECK(bake->GetScene().Lights.Count() == 2);
+
+  // Bad proxies: refused with the reason, the rest of the scene kept.
+  vtkSmartPointer<vtkPolyData> bad = pgitest::HardProxies(
+    { { 0, 0, 1.0, 0.5, 0 }, { std::numeric_limits<double>::quiet_NaN(), 0, 1, 0.3, 0 } });
+  bake->SetProxies(bad);
+  PGI_CHECK(!bake->Update());
+  PGI_CHECK(bake->GetProxyError().find("proxy 1 has a NaN") != std::string::npos);
+  PGI_CHECK(bake->GetScene().SceneBlockers.Spheres() == 0);
+  PGI_CHECK(!bake->GetScene().Light.empty());
+}
+
+void TestFilterReusesBake()
+{
+  vtkNew<vtkSphereSource> ball;
+  ball->SetCenter(0, 0, 0);
+  ball->SetRadius(0.2);
+  vtkNew<vtkPGIGlobalIllumination> gi;
+  gi->SetInputConnection(ball->GetOutputPort());
+  gi->SetProxiesData(pgitest::HardProxies({ { 0, 0, 1.0, 0.5, 0 } }));
+  gi->Update();
+  ball->SetThetaResolution(24); // receivers change, the scene does not
+  gi->Update();
+  PGI_CHECK(gi->GetBake()->GetNumberOfBuilds() == 1);
+  gi->GetSettings()->SetOrder(5);
+  gi->Update();
+  PGI_CHECK(gi->GetBake()->GetNumberOfBuilds() == 2);
+  PGI_CHECK(gi->GetOutput()->GetPointData()->GetArray("Visibility")->GetNumberOfComponents() == 25);
+  // One settings object shared by two filters drives both.
+  vtkNew<vtkPGIGlobalIllumination> other;
+  other->SetInputConnection(ball->GetOutputPort());
+  other->SetSettings(gi->GetSettings());
+  other->GetSettings()->SetOrder(3);
+  other->Update();
+  gi->Update();
+  PGI_CHECK(gi->GetOutput()->GetPointData()->GetArray("Visibility")->GetNumberOfComponents() == 9);
+}
+} // namespace
+
+int TestGISettingsAndBake(int, char*[])
+{
+  TestResolve();
+  TestBakeReuse();
+  TestFilterReusesBake();
+  return pgitest::Result();
+}

@@ -1,0 +1,447 @@
+#include "vtkPGIGIBake.h"
+
+#include "pgiEnvironmentMap.h"
+#include "pgiMaterial.h"
+#include "pgiSHLightTables.h"
+#include "vtkPGIGISettings.h"
+#include "vtkPGILighting.h"
+
+#include "vtkDataArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+
+#include <cmath>
+#include <sstream>
+
+vtkStandardNewMacro(vtkPGIGIBake);
+vtkCxxSetObjectMacro(vtkPGIGIBake, Proxies, vtkPolyData);
+vtkCxxSetObjectMacro(vtkPGIGIBake, Lighting, vtkPGILighting);
+
+namespace proxygi
+{
+vtkSmartPointer<vtkDataArray> ReceiverNormals(vtkPolyData* receivers)
+{
+  vtkSmartPointer<vtkDataArray> normals = receivers->GetPointData()->GetNormals();
+  if (normals)
+  {
+    return normals;
+  }
+  vtkNew<vtkPolyDataNormals> computer;
+  computer->SetInputData(receivers);
+  computer->SplittingOff();
+  computer->Update();
+  if (computer->GetOutput()->GetNumberOfPoints() != receivers->GetNumberOfPoints())
+  {
+    return nullptr;
+  }
+  return computer->GetOutput()->GetPointData()->GetNormals();
+}
+} // namespace proxygi
+
+vtkPGIGIBake::vtkPGIGIBake()
+{
+  this->Settings = vtkPGIGISettings::New();
+}
+
+vtkPGIGIBake::~vtkPGIGIBake()
+{
+  this->SetProxies(nullptr);
+  this->SetLighting(nullptr);
+  this->SetSettings(nullptr);
+}
+
+void vtkPGIGIBake::SetSettings(vtkPGIGISettings* settings)
+{
+  if (settings == this->Settings)
+  {
+    return;
+  }
+  if (this->Settings)
+  {
+    this->Settings->UnRegister(this);
+  }
+  this->Settings = settings;
+  if (this->Settings)
+  {
+    this->Settings->Register(this);
+  }
+  this->Modified();
+}
+
+void vtkPGIGIBake::AddBlockerPlane(
+  const double origin[3], const double normal[3], const double albedo[3])
+{
+  this->Planes.insert(this->Planes.end(), origin, origin + 3);
+  this->Planes.insert(this->Planes.end(), normal, normal + 3);
+  this->Planes.insert(this->Planes.end(), albedo, albedo + 3);
+  this->Modified();
+}
+
+void vtkPGIGIBake::RemoveAllBlockerPlanes()
+{
+  if (!this->Planes.empty())
+  {
+    this->Planes.clear();
+    this->Modified();
+  }
+}
+
+vtkMTimeType vtkPGIGIBake::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  for (vtkObject* o : { static_cast<vtkObject*>(this->Proxies),
+         static_cast<vtkObject*>(this->Lighting), static_cast<vtkObject*>(this->Settings) })
+  {
+    if (o)
+    {
+      t = std::max(t, o->GetMTime());
+    }
+  }
+  return t;
+}
+
+bool vtkPGIGIBake::Update()
+{
+  if (this->NumberOfBuilds > 0 && this->BuiltProxies == this->Proxies &&
+    this->BuiltLighting == this->Lighting && this->GetMTime() <= this->BuildTime.GetMTime())
+  {
+    return this->BuiltOk;
+  }
+  if (!this->Settings)
+  {
+    vtkNew<vtkPGIGISettings> defaults;
+    this->SetSettings(defaults);
+  }
+  this->Error.clear();
+  this->ProxyError.clear();
+  this->Scene = proxygi::BakedScene();
+  this->Scene.Order = this->Settings->GetOrder();
+  vtkNew<vtkPGILighting> defaultLighting;
+  vtkPGILighting* lighting = this->Lighting ? this->Lighting : defaultLighting.Get();
+  bool ok = this->ReadBlockers() && this->ProjectLight(lighting);
+  if (ok)
+  {
+    this->PlanEffects(lighting);
+    this->PrepareLocalLights(lighting);
+    ok = this->PrepareSphericalLights();
+  }
+  ok = ok && this->ProxyError.empty();
+  if (!ok && this->Error.empty())
+  {
+    this->Error = this->ProxyError;
+  }
+  this->BuiltOk = ok;
+  this->BuiltProxies = this->Proxies;
+  this->BuiltLighting = this->Lighting;
+  ++this->NumberOfBuilds;
+  this->BuildTime.Modified();
+  return ok;
+}
+
+bool vtkPGIGIBake::ReadBlockers()
+{
+  proxygi::BakedScene& b = this->Scene;
+  vtkPolyData* proxies = this->Proxies;
+  if (proxies && proxies->GetNumberOfPoints() > 0)
+  {
+    vtkDataArray* radius = proxies->GetPointData()->GetArray("Radius");
+    vtkDataArray* level = proxies->GetPointData()->GetArray("Level");
+    vtkDataArray* parent = proxies->GetPointData()->GetArray("Parent");
+    b.UseHierarchy = this->Settings->GetHierarchyAngle() > 0.0 && level && parent;
+    if (!radius)
+    {
+      this->ProxyError = "the proxies need a \"Radius\" point array";
+    }
+    const double* fallback = this->Settings->GetDefaultProxyAlbedo();
+    const char* albedoArray = this->Settings->GetAlbedoArrayName();
+    for (vtkIdType i = 0; radius && i < proxies->GetNumberOfPoints(); ++i)
+    {
+      double c[3], albedo[3];
+      proxies->GetPoint(i, c);
+      const double r = radius->GetTuple1(i);
+      if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]) ||
+        !std::isfinite(r) || r < 0.0)
+      {
+        std::ostringstream m;
+        m << "proxy " << i << " has a NaN, Inf or negative centre or radius";
+        this->ProxyError = m.str();
+        break;
+      }
+      proxygi::AlbedoOf(proxies, albedoArray, i, fallback, albedo);
+      const float a[3] = { float(albedo[0]), float(albedo[1]), float(albedo[2]) };
+      if (b.UseHierarchy)
+      {
+        b.Hierarchy.Albedo.insert(b.Hierarchy.Albedo.end(), a, a + 3);
+        b.Hierarchy.X.push_back(float(c[0]));
+        b.Hierarchy.Y.push_back(float(c[1]));
+        b.Hierarchy.Z.push_back(float(c[2]));
+        b.Hierarchy.R.push_back(float(r));
+        b.Hierarchy.Level.push_back(static_cast<int>(level->GetTuple1(i)));
+        b.Hierarchy.Parent.push_back(static_cast<int>(parent->GetTuple1(i)));
+      }
+      // Only leaves block; parents (Level > 0) are for hierarchy cuts.
+      if (level && level->GetTuple1(i) != 0.0)
+      {
+        continue;
+      }
+      b.SceneBlockers.AddSphere(float(c[0]), float(c[1]), float(c[2]), float(r), a);
+      b.LeafIds.push_back(i);
+    }
+    if (!this->ProxyError.empty())
+    {
+      b.SceneBlockers = proxygi::Blockers();
+      b.LeafIds.clear();
+      b.Hierarchy = proxygi::ProxyHierarchy();
+      b.UseHierarchy = false;
+    }
+    else if (b.UseHierarchy && !b.Hierarchy.Finish())
+    {
+      this->ProxyError = "the proxies' Parent array does not form a hierarchy (a parent must "
+                         "have a higher Level than its child)";
+      b.UseHierarchy = false;
+    }
+  }
+  for (std::size_t k = 0; k + 8 < this->Planes.size(); k += 9)
+  {
+    float v[9];
+    for (int q = 0; q < 9; ++q)
+    {
+      v[q] = static_cast<float>(this->Planes[k + q]);
+    }
+    b.SceneBlockers.AddPlane(v, v + 3, v + 6);
+  }
+  return true;
+}
+
+bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting)
+{
+  proxygi::BakedScene& b = this->Scene;
+  const proxygi::EnvironmentMap* environment = nullptr;
+  std::string error;
+  if (!lighting->GetEnvironment(environment, error))
+  {
+    this->Error = "bad environment: " + error;
+    return false;
+  }
+  const int order = b.Order, n2 = order * order;
+  b.Light.assign(3 * static_cast<std::size_t>(n2), 0.0);
+  environment->ProjectSH(order, &b.Light[0], &b.Light[n2], &b.Light[2 * n2]);
+  const auto path = this->Settings->GetShadingPath() == vtkPGIGISettings::SHADING_TABLE
+    ? proxygi::EnvironmentShading::Path::Table
+    : proxygi::EnvironmentShading::Path::ProductMatrix;
+  b.OpenShading = std::make_shared<proxygi::EnvironmentShading>(
+    order, &b.Light[0], &b.Light[n2], &b.Light[2 * n2], path);
+  // With planes in the light, receivers above every plane get L times the
+  // planes' steps; the others keep L and the planes in log space.
+  b.PlanesInLight = this->Settings->GetPlaneBlocking() == vtkPGIGISettings::PLANES_IN_LIGHT &&
+    b.SceneBlockers.Planes() > 0;
+  b.LightAbovePlanes = b.Light;
+  b.PlaneVisibility.assign(n2, 0.0);
+  double* above = b.LightAbovePlanes.data();
+  if (b.PlanesInLight)
+  {
+    proxygi::LightAbovePlanes(*environment, order, b.SceneBlockers.PlaneNormal.data(),
+      static_cast<int>(b.SceneBlockers.Planes()), above, above + n2, above + 2 * n2,
+      b.PlaneVisibility.data());
+  }
+  b.Shading =
+    std::make_shared<proxygi::EnvironmentShading>(order, above, above + n2, above + 2 * n2, path);
+  b.Secondary = std::make_shared<proxygi::SecondaryLights>(
+    order, above, above + n2, above + 2 * n2, b.PlanesInLight ? nullptr : &b.SceneBlockers);
+  b.InterleavedResponse.resize(3 * static_cast<std::size_t>(n2));
+  for (int i = 0; i < n2; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      b.InterleavedResponse[3 * i + c] = b.Secondary->Response[c * n2 + i];
+    }
+  }
+  b.Dark = above[0] <= 0.0 && above[n2] <= 0.0 && above[2 * n2] <= 0.0;
+
+  proxygi::SoftShadowSettings& k = b.Kernel;
+  vtkPGIGISettings* s = this->Settings;
+  k.Order = order;
+  k.AccumulationOrder = s->GetAccumulationOrder();
+  k.Exp.Method = static_cast<proxygi::sh::ExpMethod>(s->GetExpMethod());
+  k.Exp.Degree = s->GetExpDegree();
+  k.Exp.HybridMaxNorm = s->GetHybridMaxNorm();
+  k.Exp.RangeGuard = s->GetRangeTolerance() >= 0.0;
+  k.Exp.RangeTolerance = std::max(0.0, s->GetRangeTolerance());
+  k.WindowH = s->GetWindowSize();
+  k.MinAngle = static_cast<float>(s->GetMinBlockerAngle());
+  k.SelfShadowRules = s->GetSelfShadowRules();
+  k.PlanesInLogSpace = !b.PlanesInLight;
+  return true;
+}
+
+void vtkPGIGIBake::PlanEffects(vtkPGILighting* lighting)
+{
+  proxygi::BakedScene& b = this->Scene;
+  vtkPGIGISettings* s = this->Settings;
+  const proxygi::Blockers& blockers = b.SceneBlockers;
+  b.AnyBlockers = blockers.Spheres() > 0 || blockers.Planes() > 0;
+  b.RunShadows = s->GetShadows() && b.AnyBlockers;
+  for (float a : blockers.Albedo)
+  {
+    b.AnyAlbedo = b.AnyAlbedo || a > 0.0f;
+  }
+  for (float a : blockers.PlaneAlbedo)
+  {
+    b.PlanesReflect = b.PlanesReflect || a > 0.0f;
+  }
+  b.AnyAlbedo = b.AnyAlbedo || b.PlanesReflect;
+  const bool indirect = s->GetIndirect();
+  const bool shadowedMode =
+    indirect && s->GetIndirectMode() == vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
+  b.RunIndirect = indirect && !shadowedMode && b.AnyBlockers && b.AnyAlbedo && !b.Dark;
+  // The shadowed model's lights are the spheres; planes still reflect.
+  b.RunPlaneBounce = shadowedMode && b.PlanesReflect && !b.Dark;
+  const bool hasLights =
+    !lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty();
+  b.RunLocal = s->GetLocalLights() && hasLights;
+
+  std::ostringstream env;
+  env << "environment light: SH order " << b.Order << ", "
+      << (s->GetShadingPath() == vtkPGIGISettings::SHADING_TABLE ? "tabulated L*H(N)"
+                                                                 : "product matrix M_L");
+  b.Plan.push_back(env.str());
+  if (!s->GetShadows())
+  {
+    b.Plan.push_back("shadows: off (switched off)");
+  }
+  else if (!b.RunShadows)
+  {
+    b.Plan.push_back("shadows: skipped (no proxies and no blocker planes)");
+  }
+  if (!indirect)
+  {
+    b.Plan.push_back("indirect light: off (switched off)");
+  }
+  else if (shadowedMode)
+  {
+    // Planned in PrepareSphericalLights, once the lights are built.
+  }
+  else if (!b.RunIndirect)
+  {
+    b.Plan.push_back(!b.AnyBlockers ? "indirect light: skipped (no proxies or planes to reflect)"
+        : b.Dark                    ? "indirect light: skipped (the environment is black)"
+                 : "indirect light: skipped (every proxy and plane has albedo 0)");
+  }
+  else
+  {
+    b.Plan.push_back(std::string("indirect light: one bounce from the proxies and planes, ") +
+      proxygi::IndirectOperatorName(
+        static_cast<proxygi::IndirectOperator>(s->GetIndirectOperator())) +
+      " operator, overlap normalisation xi");
+  }
+  if (!s->GetLocalLights())
+  {
+    b.Plan.push_back(hasLights ? "local lights: off (switched off)"
+                               : "local lights: off (switched off; none in the lighting)");
+  }
+  else if (!b.RunLocal)
+  {
+    b.Plan.push_back("local lights: skipped (none in the lighting)");
+  }
+  else
+  {
+    std::ostringstream line;
+    line << "local lights: " << lighting->GetSphereLights().size() << " spherical, "
+         << lighting->GetPointLights().size()
+         << " point (analytic L_H lobes, shadowed by the proxies' visibility)";
+    b.Plan.push_back(line.str());
+  }
+  b.NeedVisibility =
+    b.AnyBlockers && (b.RunShadows || b.RunIndirect || b.RunPlaneBounce || b.RunLocal);
+  if (b.RunIndirect)
+  {
+    proxygi::sh::IndirectTables::Get(b.Order); // built before any parallel loop
+  }
+}
+
+void vtkPGIGIBake::PrepareLocalLights(vtkPGILighting* lighting)
+{
+  // Point lights are tiny spheres of equal power.
+  if (this->Scene.RunLocal)
+  {
+    this->Scene.Locals.AddLights(*lighting);
+    proxygi::sh::AnalyticLightTables::Get(this->Scene.Order);
+  }
+}
+
+bool vtkPGIGIBake::PrepareSphericalLights()
+{
+  proxygi::BakedScene& b = this->Scene;
+  vtkPGIGISettings* s = this->Settings;
+  if (!s->GetIndirect() || s->GetIndirectMode() != vtkPGIGISettings::INDIRECT_MODE_SHADOWED)
+  {
+    return true;
+  }
+  const proxygi::ShadowedIndirect kernel(b.Kernel,
+    s->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT
+      ? proxygi::SphericalLightBlocking::PerObject
+      : proxygi::SphericalLightBlocking::PerSphere);
+  // With a hierarchy every node is a spherical light (parents for the cuts).
+  std::vector<vtkIdType> allIds;
+  if (b.UseHierarchy)
+  {
+    for (vtkIdType i = 0; i < this->Proxies->GetNumberOfPoints(); ++i)
+    {
+      allIds.push_back(i);
+    }
+  }
+  std::string summary, bad;
+  const std::string why =
+    proxygi::PrepareSphericalLights(this->Proxies, b.UseHierarchy ? allIds : b.LeafIds,
+      b.UseHierarchy ? this->Proxies->GetPointData()->GetArray("Level") : nullptr, b.Order,
+      s->GetAlbedoArrayName(), s->GetDefaultProxyAlbedo(), *b.Shading, b.Dark, b.SceneBlockers,
+      b.Locals.Count() ? &b.Locals : nullptr, kernel, b.Lights, summary, bad);
+  if (!bad.empty())
+  {
+    this->Error = bad;
+    return false;
+  }
+  b.RunShadowed = why.empty();
+  b.SphericalLightsSummary = b.RunShadowed ? summary : "skipped: " + why;
+  b.Plan.push_back(b.RunShadowed ? "indirect light (shadowed): " + summary
+                                 : "indirect light (shadowed): skipped (" + why + ")");
+  if (b.RunPlaneBounce)
+  {
+    b.Plan.push_back("indirect light (shadowed): the blocker planes reflect as uniform "
+                     "lights, dimmed where the proxies shadow them");
+  }
+  if (b.RunShadowed && b.UseHierarchy)
+  {
+    // The leaves alone: what receivers use without a cut, and the ratios' reference.
+    const std::size_t n2s = static_cast<std::size_t>(3 * b.Order * b.Order);
+    for (std::size_t i = 0; i < b.Lights.Count(); ++i)
+    {
+      if (b.Lights.Level[i] != 0)
+      {
+        continue;
+      }
+      b.LeafOfNode[i] = static_cast<int>(b.LeafLights.Count());
+      b.LeafLights.Add(
+        b.Lights.X[i], b.Lights.Y[i], b.Lights.Z[i], b.Lights.R[i], b.Lights.Object[i]);
+      b.LeafLights.Radiance.insert(b.LeafLights.Radiance.end(), b.Lights.Radiance.begin() + i * n2s,
+        b.Lights.Radiance.begin() + (i + 1) * n2s);
+    }
+    b.LeafLights.Order = b.Order;
+    b.LeafLights.Finish();
+  }
+  return true;
+}
+
+void vtkPGIGIBake::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Proxies: " << this->Proxies << "\n";
+  os << indent << "Lighting: " << this->Lighting << "\n";
+  os << indent << "Settings: " << this->Settings << "\n";
+  os << indent << "BlockerPlanes: " << this->GetNumberOfBlockerPlanes() << "\n";
+  os << indent << "NumberOfBuilds: " << this->NumberOfBuilds << "\n";
+  os << indent << "Error: " << (this->Error.empty() ? "(none)" : this->Error) << "\n";
+}

@@ -1,0 +1,167 @@
+/**
+ * @class   vtkPGIGIBake
+ * @brief   The CPU precompute every GI consumer shares: proxies, blocker
+ *          planes, lighting and settings in; blockers, the light in SH, the
+ *          light above the planes, the planes' visibility, the secondary
+ *          lights' response, the local lights and the spherical lights after
+ *          their first pass out, with the plan of what the scene needs.
+ *
+ * vtkPGIGlobalIllumination, vtkPGIGIPolyDataMapper and
+ * vtkPGIImageSpaceGIPass each own one and call Update() before shading;
+ * it rebuilds only when an input changed (the proxies' or the lighting's
+ * MTime, the settings' MTime, the planes), the way vtkShadowMapBakerPass
+ * feeds vtkShadowMapPass, so a camera move or a new receiver mesh costs no
+ * precompute. The settings it reads are the consumer's effective ones
+ * (vtkPGIGISettings::Resolve).
+ *
+ * The stages of a build, in order: ReadBlockers (leaf proxies with albedo,
+ * the hierarchy when HierarchyAngle asks, the planes), ProjectLight (the
+ * environment in SH, LightAbovePlanes when the planes ride in the light),
+ * PlanEffects (what the scene needs, one plan line per decision),
+ * PrepareLocalLights, PrepareSphericalLights (the shadowed bounce's first
+ * pass).
+ */
+#ifndef vtkPGIGIBake_h
+#define vtkPGIGIBake_h
+
+#include "ProxyGIShadingModule.h"
+#include "vtkObject.h"
+#include "vtkSmartPointer.h"
+
+#include "pgiEnvironmentShading.h"
+#include "pgiIndirectLight.h"
+#include "pgiSoftShadows.h"
+#include "pgiSphericalLights.h"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkPGIGISettings;
+class vtkPGILighting;
+class vtkPolyData;
+
+namespace proxygi
+{
+/// What a bake computed (read-only for the consumers).
+struct PROXYGISHADING_EXPORT BakedScene
+{
+  int Order = 0;
+  /// Leaf proxies (centre, radius, albedo) and planes (origin, unit normal, albedo).
+  Blockers SceneBlockers;
+  /// The proxies' point ids of Scene's spheres.
+  std::vector<vtkIdType> LeafIds;
+  bool UseHierarchy = false;
+  ProxyHierarchy Hierarchy;
+  /// L, 3 x n^2 channel-major (R, G, B rows).
+  std::vector<double> Light;
+  /// Planes carried by the light: L times the planes' steps and the planes'
+  /// visibility (n^2); otherwise LightAbovePlanes is L and the visibility 0.
+  bool PlanesInLight = false;
+  std::vector<double> LightAbovePlanes;
+  std::vector<double> PlaneVisibility;
+  /// Shading of L (receivers without shadows or under a plane) and of the
+  /// light above the planes.
+  std::shared_ptr<const EnvironmentShading> OpenShading, Shading;
+  std::shared_ptr<const SecondaryLights> Secondary;
+  /// The response interleaved (RGB per coefficient), as the GLSL reads it.
+  std::vector<float> InterleavedResponse;
+  /// The kernel settings of this scene (PlanesInLogSpace = !PlanesInLight).
+  SoftShadowSettings Kernel;
+  LocalEmitters Locals;
+  /// Shadowed bounce: every light (with a hierarchy: every node, with Level)
+  /// after its first pass; LeafLights the leaves alone (hierarchy only).
+  SphericalLights Lights, LeafLights;
+  std::map<std::size_t, int> LeafOfNode;
+  std::string SphericalLightsSummary;
+
+  // What the scene needs.
+  bool AnyBlockers = false, AnyAlbedo = false, PlanesReflect = false, Dark = false;
+  bool RunShadows = false, RunIndirect = false, RunPlaneBounce = false, RunShadowed = false,
+       RunLocal = false, NeedVisibility = false;
+  /// One line per decision.
+  std::vector<std::string> Plan;
+
+  /// The leaf lights the receivers use without a hierarchy cut.
+  const SphericalLights& ShadowedLeaves() const
+  {
+    return this->UseHierarchy ? this->LeafLights : this->Lights;
+  }
+};
+
+/// Point normals of receivers (computed unsplit when missing, as every
+/// consumer does); null when they cannot be computed.
+PROXYGISHADING_EXPORT vtkSmartPointer<vtkDataArray> ReceiverNormals(vtkPolyData* receivers);
+} // namespace proxygi
+
+class PROXYGISHADING_EXPORT vtkPGIGIBake : public vtkObject
+{
+public:
+  static vtkPGIGIBake* New();
+  vtkTypeMacro(vtkPGIGIBake, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Sphere proxies: points with "Radius" (Level/Parent for a hierarchy).
+  virtual void SetProxies(vtkPolyData* proxies);
+  vtkGetObjectMacro(Proxies, vtkPolyData);
+  /// The light (null: a uniform white sky).
+  virtual void SetLighting(vtkPGILighting* lighting);
+  vtkGetObjectMacro(Lighting, vtkPGILighting);
+  /// The effective settings (never null; shared, not copied).
+  virtual void SetSettings(vtkPGIGISettings* settings);
+  vtkGetObjectMacro(Settings, vtkPGIGISettings);
+
+  /// Infinite planes blocking the half-space beneath them; albedo for the bounce.
+  void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
+  void RemoveAllBlockerPlanes();
+  int GetNumberOfBlockerPlanes() const { return static_cast<int>(this->Planes.size() / 9); }
+  /// origin, normal, albedo: 9 values per plane, as given.
+  const std::vector<double>& GetBlockerPlanes() const { return this->Planes; }
+
+  vtkMTimeType GetMTime() override;
+
+  /**
+   * Rebuilds if an input changed since the last build. False on bad input
+   * (GetError says why): a bad environment leaves no scene; bad proxies
+   * leave a scene without them (GetProxyError), which the filter refuses
+   * and the GPU consumers draw without proxies.
+   */
+  bool Update();
+  const proxygi::BakedScene& GetScene() const { return this->Scene; }
+  const std::string& GetError() const { return this->Error; }
+  const std::string& GetProxyError() const { return this->ProxyError; }
+  /// How many times Update() rebuilt (the rest reused).
+  vtkGetMacro(NumberOfBuilds, int);
+  /// When the last build finished (consumers compare it to re-upload).
+  vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
+
+protected:
+  vtkPGIGIBake();
+  ~vtkPGIGIBake() override;
+
+  bool ReadBlockers();
+  bool ProjectLight(vtkPGILighting* lighting);
+  void PlanEffects(vtkPGILighting* lighting);
+  void PrepareLocalLights(vtkPGILighting* lighting);
+  bool PrepareSphericalLights();
+
+  vtkPolyData* Proxies = nullptr;
+  vtkPGILighting* Lighting = nullptr;
+  vtkPGIGISettings* Settings = nullptr;
+  std::vector<double> Planes;
+  proxygi::BakedScene Scene;
+  std::string Error, ProxyError;
+  int NumberOfBuilds = 0;
+  vtkTimeStamp BuildTime;
+  vtkPolyData* BuiltProxies = nullptr;
+  vtkPGILighting* BuiltLighting = nullptr;
+  bool BuiltOk = false;
+
+private:
+  vtkPGIGIBake(const vtkPGIGIBake&) = delete;
+  void operator=(const vtkPGIGIBake&) = delete;
+};
+
+#endif
