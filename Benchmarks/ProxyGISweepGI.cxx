@@ -9,7 +9,7 @@
 //   ProxyGISweepGI [--reference-spp N] [--cache DIR] [--out PREFIX] [--quick]
 //                  [scene.json ...]
 #include "pgiScene.h"
-#include "pgiScenePipeline.h"
+#include "pgiSceneSetup.h"
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"

@@ -20,11 +20,13 @@ namespace cli
 
 std::string Option(const Args& args, const std::string& name, const std::string& fallback)
 {
-  for (std::size_t i = 0; i + 1 < args.size(); ++i)
+  // The last occurrence wins, as in most command lines (a script's defaults
+  // first, the user's choice after them).
+  for (std::size_t i = args.size(); i-- > 1;)
   {
-    if (args[i] == name)
+    if (args[i - 1] == name)
     {
-      return args[i + 1];
+      return args[i];
     }
   }
   return fallback;

@@ -20,7 +20,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath);
 int RunReference(const Args& args);
 int RunProxies(const Args& args);
 
-/// Value of "--name value" (or default); sets `ok` false on a bad number.
+/// Value of the last "--name value" (or default); sets `ok` false on a bad number.
 std::string Option(const Args& args, const std::string& name, const std::string& fallback);
 double NumberOption(const Args& args, const std::string& name, double fallback, bool& ok);
 bool Flag(const Args& args, const std::string& name);

@@ -8,7 +8,7 @@
 
 #include "pgiOffscreenWindow.h"
 #include "pgiScene.h"
-#include "pgiScenePipeline.h"
+#include "pgiSceneSetup.h"
 #include "vtkPGIGIPolyDataMapper.h"
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"

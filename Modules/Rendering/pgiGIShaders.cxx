@@ -6,6 +6,7 @@
 #include "pgiGISphericalLights.h"
 #include "pgiISLibrary.h"
 #include "pgiSHBasisGLSL.h"
+#include "pgiSRGBGLSL.h"
 
 #include "pgiMaterial.h"
 #include "pgiSHBasis.h"
@@ -169,7 +170,7 @@ std::string LibrarySource(int order)
           << "#define PGI_MAX_PLANES " << MaxPlanes << "\n";
   std::string library = pgiGILibrary;
   vtkShaderProgram::Substitute(library, "//PGI::Square::Impl", SquareSource(order));
-  return defines.str() + pgiSHBasisGLSL + "\n" + library;
+  return defines.str() + pgiSHBasisGLSL + "\n" + library + pgiSRGBGLSL;
 }
 
 std::string IndirectLibrarySource()

@@ -7,6 +7,7 @@
 #include "pgiGIMapperVS.h"
 #include "pgiGIMapperVSImpl.h"
 #include "pgiGIShaders.h"
+#include "pgiSRGBGLSL.h"
 
 #include "pgiEnvironmentMap.h"
 #include "pgiEnvironmentShading.h"
@@ -716,7 +717,9 @@ void vtkPGIGIPolyDataMapper::ReplaceShaderValues(
   std::string fs = shaders[vtkShader::Fragment]->GetSource();
   vtkShaderProgram::Substitute(vs, "//VTK::Color::Dec", pgiGIMapperVS, false);
   vtkShaderProgram::Substitute(vs, "//VTK::Color::Impl", pgiGIMapperVSImpl, false);
-  vtkShaderProgram::Substitute(fs, "//VTK::Light::Dec", pgiGIMapperFS, false);
+  std::string dec = pgiGIMapperFS;
+  vtkShaderProgram::Substitute(dec, "//PGI::SRGB", pgiSRGBGLSL);
+  vtkShaderProgram::Substitute(fs, "//VTK::Light::Dec", dec, false);
   vtkShaderProgram::Substitute(
     fs, "//VTK::Light::Impl", "//VTK::Light::Impl\n//PGI::GI::Impl\n", false);
   shaders[vtkShader::Vertex]->SetSource(vs);

@@ -6,6 +6,7 @@
 #ifndef pgiTesting_h
 #define pgiTesting_h
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -72,24 +73,50 @@ long NonFiniteValues(Array* array)
   return bad;
 }
 
-/// The tests' one relative RMSE: sqrt(sum (a - b)^2 / sum b^2) over
+/**
+ * The tests' one relative RMSE, as a running sum: Add(value, reference)
+ * per component compared; RelativeRMSE() is sqrt(sum (a - b)^2 / sum b^2)
+ * (0 when both sums are 0, +inf for an error against an all-zero
+ * reference, NaN when a value was NaN), Worst the largest |a - b|.
+ */
+struct ErrorSum
+{
+  double Squared = 0.0, Reference = 0.0, Worst = 0.0;
+  long Count = 0;
+  void Add(double value, double reference)
+  {
+    const double e = value - reference;
+    this->Squared += e * e;
+    this->Reference += reference * reference;
+    this->Worst = std::isnan(e) ? e : std::max(this->Worst, std::fabs(e));
+    ++this->Count;
+  }
+  double RelativeRMSE() const
+  {
+    if (this->Reference > 0.0)
+    {
+      return std::sqrt(this->Squared / this->Reference);
+    }
+    return this->Squared > 0.0 ? HUGE_VAL : (this->Squared == 0.0 ? 0.0 : this->Squared);
+  }
+  double RMS() const { return this->Count ? std::sqrt(this->Squared / this->Count) : 0.0; }
+};
+
+/// The tests' one relative RMSE (ErrorSum) over
 /// component 0 of a's tuples (b may hold more: a receiver patch first), or
 /// of those with mask[i]. Arrays as for NonFiniteValues.
 template <class ArrayA, class ArrayB>
 double RelativeRMSE(ArrayA* a, ArrayB* b, const std::vector<char>* mask = nullptr)
 {
-  double sq = 0.0, ref = 0.0;
+  ErrorSum errors;
   for (long i = 0; i < static_cast<long>(a->GetNumberOfTuples()); ++i)
   {
-    if (mask && !(*mask)[i])
+    if (!mask || (*mask)[i])
     {
-      continue;
+      errors.Add(a->GetComponent(i, 0), b->GetComponent(i, 0));
     }
-    const double d = a->GetComponent(i, 0) - b->GetComponent(i, 0);
-    sq += d * d;
-    ref += b->GetComponent(i, 0) * b->GetComponent(i, 0);
   }
-  return std::sqrt(sq / ref);
+  return errors.RelativeRMSE();
 }
 } // namespace pgitest
 

@@ -81,16 +81,14 @@ int TestReferenceFilters(int, char*[])
   PGI_CHECK(radiance && out->GetPointData()->GetArray("DirectShadowed") &&
     out->GetPointData()->GetArray("IndirectOneBounce") &&
     out->GetPointData()->GetArray("RadianceStdErr"));
-  double sq = 0, ref = 0;
+  pgitest::ErrorSum errors;
   for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
   {
     double x[3];
     out->GetPoint(i, x);
-    const double exact = ExactRadiance(x, 0.8);
-    sq += (radiance->GetComponent(i, 0) - exact) * (radiance->GetComponent(i, 0) - exact);
-    ref += exact * exact;
+    errors.Add(radiance->GetComponent(i, 0), ExactRadiance(x, 0.8));
   }
-  const double relErr = std::sqrt(sq / ref);
+  const double relErr = errors.RelativeRMSE();
   const double reported =
     vtkDoubleArray::SafeDownCast(out->GetFieldData()->GetArray("MeanRelativeStdErr"))->GetValue(0);
   std::printf("per-vertex filter, proxy sphere over plane, 512 samples: relative RMSE %.4f%%, "

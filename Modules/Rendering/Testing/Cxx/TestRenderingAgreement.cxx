@@ -68,19 +68,17 @@ vtkSmartPointer<vtkPolyData> Plane(
 
 struct Errors
 {
-  double Max = 0.0, SumSq = 0.0, RefMax = 0.0, RefSumSq = 0.0;
-  long Count = 0;
+  double Max = 0.0, RefMax = 0.0;
+  pgitest::ErrorSum Errors;
   void Add(double gpu, double cpu)
   {
     const double e = std::fabs(gpu - cpu);
     Max = std::isnan(e) ? 1e30 : std::max(Max, e);
-    SumSq += e * e;
     RefMax = std::max(RefMax, std::fabs(cpu));
-    RefSumSq += cpu * cpu;
-    ++Count;
+    Errors.Add(gpu, cpu);
   }
-  double RMS() const { return Count ? std::sqrt(SumSq / Count) : 0.0; }
-  double RelativeRMS() const { return RefSumSq > 0 ? std::sqrt(SumSq / RefSumSq) : 0.0; }
+  double RMS() const { return Errors.RMS(); }
+  double RelativeRMS() const { return Errors.Reference > 0 ? Errors.RelativeRMSE() : 0.0; }
   double RelativeMax() const { return RefMax > 0 ? Max / RefMax : Max; }
 };
 

@@ -6,6 +6,7 @@
 // both shading paths. Prints the measured errors; fails above the bounds.
 #include "pgiGIShaders.h"
 #include "pgiOffscreenWindow.h"
+#include "pgiSRGB.h"
 #include "pgiTesting.h"
 
 #include "pgiEnvironmentShading.h"
@@ -838,6 +839,36 @@ int TestRenderingGLSLTwins(int, char*[])
         ++pgitest::Failures();
       }
       harness.Resources().SetAnalyticLightTable(false);
+    }
+
+    // pgiEncodeSRGB (pgiSRGB.glsl, in the library and the mapper's surface
+    // pass) against proxygi::EncodeSRGB: linear values over [-0.1, 1.1]
+    // (both clamp), the linear toe included.
+    if (order == 4)
+    {
+      const int count = 4 * samples;
+      std::vector<float> linear(count), encoded;
+      for (int i = 0; i < count; ++i)
+      {
+        linear[i] = -0.1f + 1.2f * static_cast<float>(i) / static_cast<float>(count - 1);
+      }
+      linear[1] = 0.002f; // below the toe's end (0.0031308)
+      if (harness.Run(order, "",
+            "  pgiOut0 = vec4(pgiEncodeSRGB(pgiIn0.xyz), pgiEncodeSRGB(pgiIn0.www).x);\n", 1, 1,
+            linear, encoded))
+      {
+        Stats srgb;
+        for (int i = 0; i < count; ++i)
+        {
+          srgb.Add(encoded[i], proxygi::EncodeSRGB(linear[i]));
+        }
+        Report("pgiEncodeSRGB vs EncodeSRGB", order, srgb, 2e-6);
+      }
+      else
+      {
+        std::printf("FAILED harness: %s\n", harness.GetError().c_str());
+        ++pgitest::Failures();
+      }
     }
 
     // The shadowed bounce's second pass (pgiGISphericalLights.glsl) against

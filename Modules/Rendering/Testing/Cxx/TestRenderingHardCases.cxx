@@ -145,7 +145,8 @@ int TestRenderingHardCases(int, char*[])
         continue;
       }
       PGI_CHECK(pgitest::NonFiniteValues(reference) == 0);
-      double lowest = 0.0, worstRatio = 0.0, sq = 0.0, ref = 0.0;
+      double lowest = 0.0, worstRatio = 0.0;
+      pgitest::ErrorSum errors;
       const double peak = pgitest::HardPeak(gpu, &lowest);
       for (vtkIdType i = 0; i < gpu->GetNumberOfTuples(); ++i)
       {
@@ -153,12 +154,10 @@ int TestRenderingHardCases(int, char*[])
         {
           const double v = gpu->GetComponent(i, c);
           worstRatio = std::max(worstRatio, v / (2.0 * open->GetComponent(i, c) + 0.5));
-          const double e = v - reference->GetComponent(i, c);
-          sq += e * e;
-          ref += reference->GetComponent(i, c) * reference->GetComponent(i, c);
+          errors.Add(v, reference->GetComponent(i, c));
         }
       }
-      const double rms = ref > 0.0 ? std::sqrt(sq / ref) : std::sqrt(sq);
+      const double rms = errors.Reference > 0.0 ? errors.RelativeRMSE() : std::sqrt(errors.Squared);
       std::printf("%-40s %-24s %5lld vertices: peak %.3f, lowest %.3g, largest radiance / "
                   "(2 unshadowed + 0.5) %.3f, relative RMS against the CPU %.2e\n",
         scene.Name.c_str(), mode.Name, static_cast<long long>(gpu->GetNumberOfTuples()), peak,

@@ -71,7 +71,8 @@ Difference Compare(const std::vector<unsigned char>& image,
   const std::vector<unsigned char>& reference, const unsigned char background[3])
 {
   Difference d;
-  double sq = 0.0, ref = 0.0, abs = 0.0;
+  double abs = 0.0;
+  pgitest::ErrorSum errors;
   std::vector<int> levels;
   for (int i = 0; i < Size * Size; ++i)
   {
@@ -84,9 +85,7 @@ Difference Compare(const std::vector<unsigned char>& image,
     int worst = 0;
     for (int c = 0; c < 3; ++c)
     {
-      const double e = Linear(a[c]) - Linear(r[c]);
-      sq += e * e;
-      ref += Linear(r[c]) * Linear(r[c]);
+      errors.Add(Linear(a[c]), Linear(r[c]));
       const int level = std::abs(int(a[c]) - int(r[c]));
       abs += level;
       worst = std::max(worst, level);
@@ -102,7 +101,7 @@ Difference Compare(const std::vector<unsigned char>& image,
   }
   if (d.Pixels > 0)
   {
-    d.RelativeRMSE = std::sqrt(sq / ref);
+    d.RelativeRMSE = errors.RelativeRMSE();
     d.MeanAbs = abs / (3.0 * d.Pixels);
     std::sort(levels.begin(), levels.end());
     d.P99 = levels[static_cast<std::size_t>(0.99 * (levels.size() - 1))];

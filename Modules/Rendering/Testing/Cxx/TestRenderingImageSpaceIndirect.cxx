@@ -55,7 +55,7 @@ using proxygi::ToSRGB8;
 void Compare(const std::vector<unsigned char>& a, const std::vector<unsigned char>& reference,
   const unsigned char background[3], double& rmse, int& worst, int& over8, int rows = Size)
 {
-  double sq = 0.0, ref = 0.0;
+  pgitest::ErrorSum errors;
   worst = 0;
   over8 = 0;
   for (int i = 0; i < rows * Size; ++i)
@@ -68,15 +68,13 @@ void Compare(const std::vector<unsigned char>& a, const std::vector<unsigned cha
     int level = 0;
     for (int c = 0; c < 3; ++c)
     {
-      const double e = FromSRGB8(a[3 * i + c]) - FromSRGB8(r[c]);
-      sq += e * e;
-      ref += FromSRGB8(r[c]) * FromSRGB8(r[c]);
+      errors.Add(FromSRGB8(a[3 * i + c]), FromSRGB8(r[c]));
       level = std::max(level, std::abs(int(a[3 * i + c]) - int(r[c])));
     }
     worst = std::max(worst, level);
     over8 += level > 8 ? 1 : 0;
   }
-  rmse = ref > 0.0 ? std::sqrt(sq / ref) : 0.0;
+  rmse = errors.Reference > 0.0 ? errors.RelativeRMSE() : 0.0;
 }
 } // namespace
 

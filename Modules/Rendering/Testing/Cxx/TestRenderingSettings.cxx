@@ -138,17 +138,15 @@ int TestRenderingSettings(int, char*[])
   again->Initialize();
   PGI_CHECK(mapper->GetPerVertexResults(again));
   vtkDataArray* cpu = gi->GetOutput()->GetPointData()->GetArray("Radiance");
-  double num = 0.0, den = 0.0;
+  pgitest::ErrorSum errors;
   for (vtkIdType i = 0; i < cpu->GetNumberOfTuples(); ++i)
   {
     for (int c = 0; c < 3; ++c)
     {
-      const double d = cpu->GetComponent(i, c) - again->GetComponent(i, c);
-      num += d * d;
-      den += cpu->GetComponent(i, c) * cpu->GetComponent(i, c);
+      errors.Add(again->GetComponent(i, c), cpu->GetComponent(i, c));
     }
   }
-  const double rms = std::sqrt(num / std::max(den, 1e-300));
+  const double rms = errors.RelativeRMSE();
   std::printf("CPU filter against the mapper on one settings object: relative RMS %.2e\n", rms);
   PGI_BELOW(rms, 1e-3);
   window->RemoveRenderer(renderer);

@@ -1,14 +1,14 @@
 /**
- * @file pgiScenePipeline.h
+ * @file pgiSceneSetup.h
  * @brief What every program that renders a scene does the same way: sphere
  * proxies for the scene's meshes (built once, cached on disk), the GI filter
  * configured from the scene, the Embree reference of the same receivers
  * (cached), and the error metric of the accuracy/time report.
  */
-#ifndef pgiScenePipeline_h
-#define pgiScenePipeline_h
+#ifndef pgiSceneSetup_h
+#define pgiSceneSetup_h
 
-#include "ProxyGIPipelineModule.h"
+#include "ProxyGISceneSetupModule.h"
 
 #include "pgiScene.h"
 #include "vtkSmartPointer.h"
@@ -39,22 +39,22 @@ struct SceneProxies
 
 /// Proxies of a loaded scene, `spheresPerMesh` per mesh; the sets are cached
 /// in `cacheDir` (created if missing; "" = no cache). False with a message.
-PROXYGIPIPELINE_EXPORT bool BuildSceneProxies(const SceneDescription& scene,
+PROXYGISCENESETUP_EXPORT bool BuildSceneProxies(const SceneDescription& scene,
   const LoadedScene& loaded, int spheresPerMesh, const std::string& cacheDir, SceneProxies& proxies,
   std::string& error);
 
 /// The receivers of a scene: every object with point normals (unsplit).
-PROXYGIPIPELINE_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(
+PROXYGISCENESETUP_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(
   const LoadedScene& loaded);
 
 /// The scene's effect switches (shadows, indirect, local lights) on GI
 /// settings; the knobs (order, method, ...) are left to the caller.
-PROXYGIPIPELINE_EXPORT void ConfigureSettings(
+PROXYGISCENESETUP_EXPORT void ConfigureSettings(
   vtkPGIGISettings* settings, const SceneDescription& scene);
 
 /// Sets the filter's lighting, proxies, planes and (ConfigureSettings) the
 /// scene's effect switches on its settings.
-PROXYGIPIPELINE_EXPORT void ConfigureGlobalIllumination(vtkPGIGlobalIllumination* gi,
+PROXYGISCENESETUP_EXPORT void ConfigureGlobalIllumination(vtkPGIGlobalIllumination* gi,
   const SceneDescription& scene, const LoadedScene& loaded, const SceneProxies& proxies);
 
 /**
@@ -67,20 +67,20 @@ PROXYGIPIPELINE_EXPORT void ConfigureGlobalIllumination(vtkPGIGlobalIllumination
  * be compared with each other take different seeds (independent noise).
  * Empty on error.
  */
-PROXYGIPIPELINE_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(
+PROXYGISCENESETUP_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(
   const SceneDescription& scene, const LoadedScene& loaded,
   const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, int spp, const std::string& cacheDir,
   const SceneProxies* proxies, double& seconds, std::string& error, unsigned int seed = 1);
 
 /// Relative RMSE sqrt(sum |a-b|^2 / sum |b|^2) of two RGB point arrays over
 /// the given objects (all when `objects` is empty); 0 when b is all zero.
-PROXYGIPIPELINE_EXPORT double RelativeRMSE(const std::vector<vtkSmartPointer<vtkPolyData>>& a,
+PROXYGISCENESETUP_EXPORT double RelativeRMSE(const std::vector<vtkSmartPointer<vtkPolyData>>& a,
   const char* arrayA, const std::vector<vtkSmartPointer<vtkPolyData>>& b, const char* arrayB,
   const std::vector<std::size_t>& objects = {});
 
 /// Relative RMS of an array (a reference's standard error) against another
 /// (its value), the noise floor of RelativeRMSE.
-PROXYGIPIPELINE_EXPORT double RelativeRMS(const std::vector<vtkSmartPointer<vtkPolyData>>& a,
+PROXYGISCENESETUP_EXPORT double RelativeRMS(const std::vector<vtkSmartPointer<vtkPolyData>>& a,
   const char* arrayA, const char* arrayValue, const std::vector<std::size_t>& objects = {});
 
 } // namespace proxygi

@@ -1,4 +1,4 @@
-#include "pgiScenePipeline.h"
+#include "pgiSceneSetup.h"
 
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
