@@ -134,19 +134,10 @@ vtkPolyData* vtkPGIGIPolyDataMapper::GetProxies()
 
 void vtkPGIGIPolyDataMapper::SetSettings(vtkPGIGISettings* settings)
 {
-  vtkSmartPointer<vtkPGIGISettings> next = settings;
-  if (!next)
+  if (vtkPGIGISettings::Share(this, this->Settings, settings))
   {
-    next = vtkSmartPointer<vtkPGIGISettings>::New();
+    this->Modified();
   }
-  if (next == this->Settings)
-  {
-    return;
-  }
-  this->Settings->UnRegister(this);
-  this->Settings = next;
-  this->Settings->Register(this);
-  this->Modified();
 }
 
 const vtkPGIGISettings::Support& vtkPGIGIPolyDataMapper::GetSupport()
@@ -265,36 +256,13 @@ vtkTransformFeedback* SharedCapture(int visibilityVec4s)
 
 bool vtkPGIGIPolyDataMapper::PrepareBake(std::ostringstream& why)
 {
-  Internals& g = *this->GPU;
-  std::vector<std::string> notes;
-  this->Settings->Resolve(
-    GetSupport(), this->Bake->GetNumberOfBlockerPlanes(), this->Effective, notes);
-  if (notes != this->SettingsNotes)
-  {
-    for (const std::string& note : notes)
-    {
-      vtkWarningMacro(<< "Not honoured: " << note << ".");
-    }
-    this->SettingsNotes = notes;
-  }
   this->Bake->SetProxies(this->GetProxies());
   this->Bake->SetLighting(this->Lighting);
-  const int builds = this->Bake->GetNumberOfBuilds();
-  const bool ok = this->Bake->Update();
-  const bool rebuilt = this->Bake->GetNumberOfBuilds() != builds;
-  if (!ok && this->Bake->GetProxyError().empty())
+  if (!this->Bake->UpdateFor(this, this->Settings, GetSupport(), {}, this->SettingsNotes))
   {
-    if (rebuilt)
-    {
-      vtkErrorMacro("Bad environment: " << this->Bake->GetError().substr(17));
-    }
     return false;
   }
-  if (rebuilt && !this->Bake->GetProxyError().empty())
-  {
-    vtkErrorMacro("Proxies ignored: " << this->Bake->GetProxyError() << ".");
-  }
-  if (this->Bake->GetBuildTime() != g.BakeUploaded)
+  if (this->Bake->GetBuildTime() != this->GPU->BakeUploaded)
   {
     why << "scene; ";
   }

@@ -286,19 +286,10 @@ vtkPGIImageSpaceGIPass::~vtkPGIImageSpaceGIPass()
 
 void vtkPGIImageSpaceGIPass::SetSettings(vtkPGIGISettings* settings)
 {
-  vtkSmartPointer<vtkPGIGISettings> next = settings;
-  if (!next)
+  if (vtkPGIGISettings::Share(this, this->Settings, settings))
   {
-    next = vtkSmartPointer<vtkPGIGISettings>::New();
+    this->Modified();
   }
-  if (next == this->Settings)
-  {
-    return;
-  }
-  this->Settings->UnRegister(this);
-  this->Settings = next;
-  this->Settings->Register(this);
-  this->Modified();
 }
 
 const vtkPGIGISettings::Support& vtkPGIImageSpaceGIPass::GetSupport()
@@ -742,10 +733,8 @@ void vtkPGIImageSpaceGIPass::Lap(int pass)
 bool vtkPGIImageSpaceGIPass::PrepareInputs(vtkOpenGLRenderWindow* window, std::string& why)
 {
   Internals& g = *this->GPU;
-  std::vector<std::string> notes;
-  this->Settings->Resolve(
-    GetSupport(), this->Bake->GetNumberOfBlockerPlanes(), this->Effective, notes);
   vtkPGILighting* lighting = this->Lighting;
+  std::vector<std::string> notes;
   if (this->Settings->GetLocalLights() && lighting &&
     (!lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty()))
   {
@@ -753,31 +742,12 @@ bool vtkPGIImageSpaceGIPass::PrepareInputs(vtkOpenGLRenderWindow* window, std::s
       std::to_string(lighting->GetSphereLights().size() + lighting->GetPointLights().size()) +
       " local lights are not drawn in the image-space pass");
   }
-  if (notes != this->SettingsNotes)
-  {
-    for (const std::string& note : notes)
-    {
-      vtkWarningMacro(<< "Not honoured: " << note << ".");
-    }
-    this->SettingsNotes = notes;
-  }
   this->Bake->SetProxies(this->GetProxies());
   this->Bake->SetLighting(lighting);
-  const int builds = this->Bake->GetNumberOfBuilds();
-  const bool ok = this->Bake->Update();
-  const bool rebuilt = this->Bake->GetNumberOfBuilds() != builds;
-  if (!ok && this->Bake->GetProxyError().empty())
+  if (!this->Bake->UpdateFor(this, this->Settings, GetSupport(), notes, this->SettingsNotes))
   {
-    if (rebuilt)
-    {
-      vtkErrorMacro("Bad environment: " << this->Bake->GetError().substr(17));
-    }
     why = "bad environment";
     return false;
-  }
-  if (rebuilt && !this->Bake->GetProxyError().empty())
-  {
-    vtkErrorMacro("Proxies ignored: " << this->Bake->GetProxyError() << ".");
   }
   const proxygi::BakedScene& b = this->Bake->GetScene();
   const int order = b.Order, n2 = order * order;

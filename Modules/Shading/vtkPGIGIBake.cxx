@@ -141,6 +141,39 @@ bool vtkPGIGIBake::Update()
   return ok;
 }
 
+bool vtkPGIGIBake::UpdateFor(vtkObject* owner, vtkPGIGISettings* requested,
+  const vtkPGIGISettings::Support& support, const std::vector<std::string>& extraNotes,
+  std::vector<std::string>& said)
+{
+  std::vector<std::string> notes;
+  requested->Resolve(support, this->GetNumberOfBlockerPlanes(), this->Settings, notes);
+  notes.insert(notes.end(), extraNotes.begin(), extraNotes.end());
+  if (notes != said)
+  {
+    for (const std::string& note : notes)
+    {
+      vtkWarningWithObjectMacro(owner, << "Not honoured: " << note << ".");
+    }
+    said = notes;
+  }
+  const int builds = this->NumberOfBuilds;
+  const bool ok = this->Update();
+  const bool rebuilt = this->NumberOfBuilds != builds;
+  if (!ok && this->ProxyError.empty())
+  {
+    if (rebuilt)
+    {
+      vtkErrorWithObjectMacro(owner, << "Bad environment: " << this->Error.substr(17));
+    }
+    return false;
+  }
+  if (rebuilt && !this->ProxyError.empty())
+  {
+    vtkErrorWithObjectMacro(owner, << "Proxies ignored: " << this->ProxyError << ".");
+  }
+  return true;
+}
+
 bool vtkPGIGIBake::ReadBlockers()
 {
   proxygi::BakedScene& b = this->Scene;

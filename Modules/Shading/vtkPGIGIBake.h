@@ -26,6 +26,7 @@
 
 #include "ProxyGIShadingModule.h"
 #include "vtkObject.h"
+#include "vtkPGIGISettings.h"
 #include "vtkSmartPointer.h"
 
 #include "pgiEnvironmentShading.h"
@@ -39,7 +40,6 @@
 #include <vector>
 
 class vtkDataArray;
-class vtkPGIGISettings;
 class vtkPGILighting;
 class vtkPolyData;
 
@@ -129,6 +129,18 @@ public:
    * and the GPU consumers draw without proxies.
    */
   bool Update();
+  /**
+   * A GPU consumer's step before drawing: resolves `requested` for
+   * `support` into this bake's settings (plus `extraNotes`), warns through
+   * `owner` when the notes differ from `said` (then updates it), updates
+   * the bake, and reports a bad environment or bad proxies through
+   * `owner`'s error once per rebuild. False without a usable scene (bad
+   * environment); bad proxies leave a scene without them.
+   */
+  bool UpdateFor(vtkObject* owner, vtkPGIGISettings* requested,
+    const vtkPGIGISettings::Support& support, const std::vector<std::string>& extraNotes,
+    std::vector<std::string>& said);
+
   const proxygi::BakedScene& GetScene() const { return this->Scene; }
   const std::string& GetError() const { return this->Error; }
   const std::string& GetProxyError() const { return this->ProxyError; }

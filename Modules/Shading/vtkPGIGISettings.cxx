@@ -2,6 +2,7 @@
 
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkSmartPointer.h"
 
 #include <cstdlib>
 #include <sstream>
@@ -48,6 +49,26 @@ const char* vtkPGIGISettings::SphericalLightBlockingName(int blocking)
 const char* vtkPGIGISettings::ShadingPathName(int path)
 {
   return path == SHADING_PRODUCT_MATRIX ? "product matrix" : "table";
+}
+
+bool vtkPGIGISettings::Share(vtkObject* owner, vtkPGIGISettings*& slot, vtkPGIGISettings* next)
+{
+  vtkSmartPointer<vtkPGIGISettings> chosen = next;
+  if (!chosen)
+  {
+    chosen = vtkSmartPointer<vtkPGIGISettings>::New();
+  }
+  if (chosen == slot)
+  {
+    return false;
+  }
+  if (slot)
+  {
+    slot->UnRegister(owner);
+  }
+  slot = chosen;
+  slot->Register(owner);
+  return true;
 }
 
 void vtkPGIGISettings::DeepCopy(vtkPGIGISettings* o)

@@ -142,6 +142,13 @@ public:
   vtkSetStringMacro(AlbedoArrayName);
   vtkGetStringMacro(AlbedoArrayName);
 
+  /**
+   * A consumer's SetSettings: `slot` (owned by `owner`, never null) takes
+   * `next`, or a fresh default set for null. True when it changed (the
+   * caller then calls Modified()).
+   */
+  static bool Share(vtkObject* owner, vtkPGIGISettings*& slot, vtkPGIGISettings* next);
+
   /// Every knob from `other` (Modified only if something changed).
   void DeepCopy(vtkPGIGISettings* other);
 

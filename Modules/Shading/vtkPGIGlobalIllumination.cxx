@@ -118,19 +118,10 @@ vtkPGIGlobalIllumination::~vtkPGIGlobalIllumination()
 
 void vtkPGIGlobalIllumination::SetSettings(vtkPGIGISettings* settings)
 {
-  vtkSmartPointer<vtkPGIGISettings> next = settings;
-  if (!next)
+  if (vtkPGIGISettings::Share(this, this->Settings, settings))
   {
-    next = vtkSmartPointer<vtkPGIGISettings>::New();
+    this->Modified();
   }
-  if (next == this->Settings)
-  {
-    return;
-  }
-  this->Settings->UnRegister(this);
-  this->Settings = next;
-  this->Settings->Register(this);
-  this->Modified();
 }
 
 const vtkPGIGISettings::Support& vtkPGIGlobalIllumination::GetSupport()
