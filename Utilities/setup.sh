@@ -17,7 +17,7 @@ packages=(
   build-essential cmake ninja-build pkg-config file
   paraview-dev python3-paraview
   qtbase5-dev qttools5-dev libqt5x11extras5-dev libqt5svg5-dev
-  qtxmlpatterns5-dev-tools libqt5opengl5-dev
+  qtxmlpatterns5-dev-tools libqt5opengl5-dev libdouble-conversion-dev
   libopenmpi-dev libutfcpp-dev
   libembree-dev libopenexr-dev libglm-dev libeigen3-dev
   libegl-dev libglew-dev libosmesa6-dev libgl1-mesa-dri xvfb xauth

@@ -102,6 +102,9 @@ Commands:
   proxies    Bounding sphere proxies of a mesh (variational, octree or
              k-means): write them (.vtp), print E and the build time.
              Run 'proxygi proxies --help'.
+  shade      The CPU GI filter on a receiver mesh (.off/.vtp) and a proxies
+             .vtp with the classes' defaults: the arrays and the plan.
+             Run 'proxygi shade --help'.
   reference  Embree path-traced ground truth of a scene (or the default
              scene), per pixel (EXR/PNG) or per vertex (.vtp), with its noise.
              Run 'proxygi reference --help'.
@@ -177,6 +180,10 @@ int main(int argc, char* argv[])
   if (command == "proxies")
   {
     return proxygi::cli::RunProxies(args);
+  }
+  if (command == "shade")
+  {
+    return proxygi::cli::RunShade(args);
   }
   std::fprintf(stderr, "proxygi: unknown command '%s'\n\n%s", command.c_str(), Usage);
   return 2;

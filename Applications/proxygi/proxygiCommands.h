@@ -19,6 +19,8 @@ int RunRenderAnalytic(const Args& args);
 int RunRenderScene(const Args& args, const std::string& scenePath);
 int RunReference(const Args& args);
 int RunProxies(const Args& args);
+/// The CPU GI filter on a receiver mesh and a proxies file.
+int RunShade(const Args& args);
 
 /// Value of the last "--name value" (or default); sets `ok` false on a bad number.
 std::string Option(const Args& args, const std::string& name, const std::string& fallback);

@@ -41,6 +41,15 @@ public:
   vtkSetVector3Macro(UniformRadiance, double);
   vtkGetVector3Macro(UniformRadiance, double);
 
+  /// An OpenEXR lat-long file for the environment, read when there is no
+  /// EnvironmentImage (vtkPGIEXRReader; re-read when the name changes).
+  vtkSetStringMacro(EnvironmentFileName);
+  vtkGetStringMacro(EnvironmentFileName);
+
+  /// Scale of the environment's radiance (image, file or uniform sky).
+  vtkSetClampMacro(EnvironmentScale, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(EnvironmentScale, double);
+
   /// Rotation of the environment about +z, in degrees.
   vtkSetMacro(EnvironmentRotation, double);
   vtkGetMacro(EnvironmentRotation, double);
@@ -59,6 +68,11 @@ public:
   void AddSphereLight(const double center[3], double radius, const double radiance[3]);
   void AddPointLight(const double position[3], const double intensity[3]);
   void RemoveAllLights();
+  /// The same with plain numbers (ParaView's repeated properties).
+  void AddSphereLight(double x, double y, double z, double radius, double r, double g, double b);
+  void AddPointLight(double x, double y, double z, double r, double g, double b);
+  void RemoveAllSphereLights();
+  void RemoveAllPointLights();
   const std::vector<SphereLight>& GetSphereLights() const { return this->SphereLights; }
   const std::vector<PointLight>& GetPointLights() const { return this->PointLights; }
 
@@ -72,6 +86,8 @@ protected:
   vtkImageData* EnvironmentImage = nullptr;
   double UniformRadiance[3] = { 1.0, 1.0, 1.0 };
   double EnvironmentRotation = 0.0;
+  char* EnvironmentFileName = nullptr;
+  double EnvironmentScale = 1.0;
   std::vector<SphereLight> SphereLights;
   std::vector<PointLight> PointLights;
 

@@ -158,6 +158,13 @@ void vtkPGIGlobalIllumination::AddBlockerPlane(
   this->Modified();
 }
 
+void vtkPGIGlobalIllumination::AddBlockerPlane(
+  double ox, double oy, double oz, double nx, double ny, double nz, double ar, double ag, double ab)
+{
+  const double origin[3] = { ox, oy, oz }, normal[3] = { nx, ny, nz }, albedo[3] = { ar, ag, ab };
+  this->AddBlockerPlane(origin, normal, albedo);
+}
+
 void vtkPGIGlobalIllumination::RemoveAllBlockerPlanes()
 {
   this->Bake->RemoveAllBlockerPlanes();

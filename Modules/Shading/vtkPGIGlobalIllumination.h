@@ -89,6 +89,9 @@ public:
   /// an albedo they also reflect light (indirect).
   void AddBlockerPlane(const double origin[3], const double normal[3]);
   void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
+  /// The same with plain numbers: origin, normal, albedo (ParaView).
+  void AddBlockerPlane(double ox, double oy, double oz, double nx, double ny, double nz, double ar,
+    double ag, double ab);
   void RemoveAllBlockerPlanes();
 
   /// The plan of the last execution, one line per decision.

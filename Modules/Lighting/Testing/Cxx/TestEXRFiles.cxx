@@ -2,6 +2,9 @@
 // wrong channel layouts, non-2:1 sizes; NaN/Inf texels are clamped and counted.
 #include "vtkPGIEXRReader.h"
 #include "vtkPGIEXRWriter.h"
+#include "vtkPGILighting.h"
+
+#include "pgiEnvironmentMap.h"
 
 #include "pgiTesting.h"
 #include "vtkExecutive.h"
@@ -74,6 +77,36 @@ int TestEXRFiles(int, char*[])
       }
     }
     PGI_CHECK(worst == 0.0);
+  }
+
+  // vtkPGILighting's EnvironmentFileName reads the same file; the scale
+  // multiplies its SH; a missing file is an error with the name, no crash.
+  {
+    vtkNew<vtkPGILighting> fromFile, fromImage;
+    fromFile->SetEnvironmentFileName("/tmp/pgi-roundtrip.exr");
+    fromImage->SetEnvironmentImage(image);
+    const proxygi::EnvironmentMap *a = nullptr, *b = nullptr;
+    std::string error;
+    PGI_CHECK(fromFile->GetEnvironment(a, error) && fromImage->GetEnvironment(b, error));
+    double ra[9], ga[9], ba[9], rb[9], gb[9], bb[9];
+    if (a && b)
+    {
+      a->ProjectSH(3, ra, ga, ba);
+      b->ProjectSH(3, rb, gb, bb);
+      PGI_NEAR(ra[0], rb[0], 1e-12);
+      PGI_NEAR(ba[4], bb[4], 1e-12);
+    }
+    fromFile->SetEnvironmentScale(2.0);
+    PGI_CHECK(fromFile->GetEnvironment(a, error));
+    if (a)
+    {
+      double r2[9], g2[9], b2[9];
+      a->ProjectSH(3, r2, g2, b2);
+      PGI_NEAR(r2[0], 2.0 * rb[0], 1e-9 * std::fabs(rb[0]));
+    }
+    fromFile->SetEnvironmentFileName("/nonexistent/sky.exr");
+    PGI_CHECK(!fromFile->GetEnvironment(a, error));
+    PGI_CHECK(error.find("/nonexistent/sky.exr") != std::string::npos);
   }
 
   // Missing file.
