@@ -5,6 +5,7 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
+#include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -105,8 +106,10 @@ bool vtkPGILighting::GetEnvironment(const proxygi::EnvironmentMap*& map, std::st
     {
       vtkNew<vtkPGIEXRReader> reader;
       reader->SetFileName(this->EnvironmentFileName);
-      vtkNew<vtkCallbackCommand> quiet; // the failure is returned, not printed twice
+      // The failure is returned to the caller, not printed twice.
+      vtkNew<vtkCallbackCommand> quiet;
       reader->AddObserver(vtkCommand::ErrorEvent, quiet);
+      reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
       reader->Update();
       image = reader->GetOutput();
       if (!image || image->GetNumberOfPoints() == 0)
