@@ -163,7 +163,7 @@ bool vtkPGIGIBake::UpdateFor(vtkObject* owner, vtkPGIGISettings* requested,
   {
     if (rebuilt)
     {
-      vtkErrorWithObjectMacro(owner, << "Bad environment: " << this->Error.substr(17));
+      vtkErrorWithObjectMacro(owner, << this->Error);
     }
     return false;
   }
@@ -256,7 +256,7 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting)
   std::string error;
   if (!lighting->GetEnvironment(environment, error))
   {
-    this->Error = "bad environment: " + error;
+    this->Error = "Bad environment: " + error;
     return false;
   }
   const int order = b.Order, n2 = order * order;

@@ -142,6 +142,7 @@ public:
     std::vector<std::string>& said);
 
   const proxygi::BakedScene& GetScene() const { return this->Scene; }
+  /// A sentence: "Bad environment: ..." (or the proxies' error).
   const std::string& GetError() const { return this->Error; }
   const std::string& GetProxyError() const { return this->ProxyError; }
   /// How many times Update() rebuilt (the rest reused).

@@ -229,9 +229,7 @@ bool vtkPGIGlobalIllumination::PrepareBake(vtkPolyData* proxies)
     }
     else
     {
-      std::string m = this->Bake->GetError();
-      m[0] = static_cast<char>(std::toupper(m[0]));
-      vtkErrorMacro(<< m);
+      vtkErrorMacro(<< this->Bake->GetError());
     }
     return false;
   }
