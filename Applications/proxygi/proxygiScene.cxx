@@ -188,13 +188,9 @@ vtkSmartPointer<vtkPGIGISettings> ReportSettings(vtkPGIGISettings* settings, con
                                                      : vtkPGIGlobalIllumination::GetSupport();
   auto effective = vtkSmartPointer<vtkPGIGISettings>::New();
   std::vector<std::string> notes;
-  settings->Resolve(support, static_cast<int>(proxies.Planes.size()), effective, notes);
-  const vtkPGILighting* lighting = loaded.Lighting;
-  if (o.ImageSpace() && settings->GetLocalLights() &&
-    (!lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty()))
-  {
-    notes.push_back("LocalLights: the scene's local lights are not drawn in the image-space pass");
-  }
+  vtkPGILighting* lighting = loaded.Lighting;
+  settings->Resolve(support, static_cast<int>(proxies.Planes.size()), effective, notes,
+    static_cast<int>(lighting->GetSphereLights().size() + lighting->GetPointLights().size()));
   for (const std::string& note : notes)
   {
     std::printf("not honoured: %s\n", note.c_str());

@@ -66,7 +66,6 @@ struct vtkPGIGIPolyDataMapper::Internals
   bool HaveResults = false;
   // What the last GI pass used, to skip it when nothing changed.
   vtkMTimeType InputTime = 0, BakeUploaded = 0, SettingsTime = 0;
-  int BakeBuilds = -1;
   std::string AlbedoKey; // the receivers' albedo knobs
   vtkPolyData* Input = nullptr;
   std::array<double, 16> Matrix{};
@@ -227,7 +226,6 @@ void vtkPGIGIPolyDataMapper::ReleaseGraphicsResources(vtkWindow* window)
   g.Window = nullptr;
   g.Input = nullptr;
   g.UploadedOrder = 0;
-  g.BakeBuilds = -1;
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -258,7 +256,7 @@ bool vtkPGIGIPolyDataMapper::PrepareBake(std::ostringstream& why)
 {
   this->Bake->SetProxies(this->GetProxies());
   this->Bake->SetLighting(this->Lighting);
-  if (!this->Bake->UpdateFor(this, this->Settings, GetSupport(), {}, this->SettingsNotes))
+  if (!this->Bake->UpdateFor(this, this->Settings, GetSupport(), this->SettingsNotes))
   {
     return false;
   }

@@ -733,18 +733,9 @@ void vtkPGIImageSpaceGIPass::Lap(int pass)
 bool vtkPGIImageSpaceGIPass::PrepareInputs(vtkOpenGLRenderWindow* window, std::string& why)
 {
   Internals& g = *this->GPU;
-  vtkPGILighting* lighting = this->Lighting;
-  std::vector<std::string> notes;
-  if (this->Settings->GetLocalLights() && lighting &&
-    (!lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty()))
-  {
-    notes.push_back("LocalLights: the lighting's " +
-      std::to_string(lighting->GetSphereLights().size() + lighting->GetPointLights().size()) +
-      " local lights are not drawn in the image-space pass");
-  }
   this->Bake->SetProxies(this->GetProxies());
-  this->Bake->SetLighting(lighting);
-  if (!this->Bake->UpdateFor(this, this->Settings, GetSupport(), notes, this->SettingsNotes))
+  this->Bake->SetLighting(this->Lighting);
+  if (!this->Bake->UpdateFor(this, this->Settings, GetSupport(), this->SettingsNotes))
   {
     why = "bad environment";
     return false;

@@ -142,12 +142,13 @@ bool vtkPGIGIBake::Update()
 }
 
 bool vtkPGIGIBake::UpdateFor(vtkObject* owner, vtkPGIGISettings* requested,
-  const vtkPGIGISettings::Support& support, const std::vector<std::string>& extraNotes,
-  std::vector<std::string>& said)
+  const vtkPGIGISettings::Support& support, std::vector<std::string>& said)
 {
   std::vector<std::string> notes;
-  requested->Resolve(support, this->GetNumberOfBlockerPlanes(), this->Settings, notes);
-  notes.insert(notes.end(), extraNotes.begin(), extraNotes.end());
+  const int lights = this->Lighting ? static_cast<int>(this->Lighting->GetSphereLights().size() +
+                                        this->Lighting->GetPointLights().size())
+                                    : 0;
+  requested->Resolve(support, this->GetNumberOfBlockerPlanes(), this->Settings, notes, lights);
   if (notes != said)
   {
     for (const std::string& note : notes)

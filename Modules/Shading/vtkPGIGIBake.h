@@ -131,15 +131,14 @@ public:
   bool Update();
   /**
    * A GPU consumer's step before drawing: resolves `requested` for
-   * `support` into this bake's settings (plus `extraNotes`), warns through
+   * `support` (with this bake's planes and local lights) into its settings, warns through
    * `owner` when the notes differ from `said` (then updates it), updates
    * the bake, and reports a bad environment or bad proxies through
    * `owner`'s error once per rebuild. False without a usable scene (bad
    * environment); bad proxies leave a scene without them.
    */
   bool UpdateFor(vtkObject* owner, vtkPGIGISettings* requested,
-    const vtkPGIGISettings::Support& support, const std::vector<std::string>& extraNotes,
-    std::vector<std::string>& said);
+    const vtkPGIGISettings::Support& support, std::vector<std::string>& said);
 
   const proxygi::BakedScene& GetScene() const { return this->Scene; }
   /// A sentence: "Bad environment: ..." (or the proxies' error).

@@ -122,8 +122,8 @@ int NearestIn(unsigned set, int value, int count)
 }
 }
 
-bool vtkPGIGISettings::Resolve(
-  const Support& s, int planes, vtkPGIGISettings* effective, std::vector<std::string>& notes) const
+bool vtkPGIGISettings::Resolve(const Support& s, int planes, vtkPGIGISettings* effective,
+  std::vector<std::string>& notes, int localLights) const
 {
   if (!effective)
   {
@@ -247,7 +247,10 @@ bool vtkPGIGISettings::Resolve(
   }
   if (!s.LocalLights && this->LocalLights)
   {
-    // Said by the consumer only when the lighting has local lights.
+    if (localLights > 0)
+    {
+      note("LocalLights", "the " + std::to_string(localLights) + " local lights are not drawn");
+    }
     e->SetLocalLights(false);
   }
   if (!s.ReceiverAlbedo)

@@ -188,13 +188,14 @@ public:
    * Copies these settings into `effective` with every value `support`
    * cannot honour replaced (the nearest supported value, or the default
    * for a knob it does not read), one line per replacement in `notes`
-   * ("Order 8: the GPU mapper supports 2..6; using 6"). `planes`: how many
-   * blocker planes the scene has (PlaneBlocking only matters with some).
+   * ("Order 8: the GPU mapper supports 2..6; using 6"). `planes`, `localLights`:
+   * how many blocker planes and local lights the scene has (PlaneBlocking and
+   * LocalLights only matter with some).
    * Knobs a backend does not read are noted only when set away from their
    * default. Returns whether nothing was replaced.
    */
   bool Resolve(const Support& support, int planes, vtkPGIGISettings* effective,
-    std::vector<std::string>& notes) const;
+    std::vector<std::string>& notes, int localLights = 0) const;
 
 protected:
   vtkPGIGISettings();

@@ -117,6 +117,18 @@ void TestResolve()
   notes.clear();
   s->Resolve(pass, 0, e, notes);
   PGI_CHECK(Mentions(notes, "DefaultAlbedo"));
+  // Local lights a backend cannot draw are said only when the scene has some.
+  pass.LocalLights = false;
+  notes.clear();
+  s->Resolve(pass, 0, e, notes);
+  for (const std::string& n : notes)
+  {
+    PGI_CHECK(n.find("LocalLights") == std::string::npos);
+  }
+  notes.clear();
+  s->Resolve(pass, 0, e, notes, 3);
+  PGI_CHECK(Mentions(notes, "LocalLights: the 3 local lights are not drawn in the test backend"));
+  PGI_CHECK(!e->GetLocalLights());
 }
 
 void TestBakeReuse()
