@@ -1,103 +1,24 @@
 #include "vtkPGIGIPolyDataMapper.h"
 
-#include "pgiGIComputeFS.h"
-#include "pgiGIComputeVS.h"
-#include "pgiGIMapperFS.h"
-#include "pgiGIMapperFSImpl.h"
-#include "pgiGIMapperVS.h"
-#include "pgiGIMapperVSImpl.h"
-#include "pgiGIShaders.h"
-#include "pgiSRGBGLSL.h"
 
-#include "pgiEnvironmentMap.h"
-#include "pgiEnvironmentShading.h"
-#include "pgiIndirectLight.h"
-#include "pgiMaterial.h"
-#include "pgiSoftShadows.h"
-#include "pgiSphericalLights.h"
-#include "vtkPGILighting.h"
-
-#include "vtkActor.h"
-#include "vtkAlgorithmOutput.h"
-#include "vtkDataArray.h"
-#include "vtkFloatArray.h"
 #include "vtkInformation.h"
-#include "vtkMatrix3x3.h"
-#include "vtkMatrix4x4.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLHelper.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLShaderCache.h"
-#include "vtkOpenGLVertexArrayObject.h"
-#include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkRenderer.h"
-#include "vtkShaderProgram.h"
-#include "vtkSmartPointer.h"
-#include "vtkTextureObject.h"
-#include "vtkTransformFeedback.h"
-#include "vtk_glew.h"
 
 #include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstring>
-#include <map>
-#include <sstream>
 
 vtkStandardNewMacro(vtkPGIGIPolyDataMapper);
-vtkCxxSetObjectMacro(vtkPGIGIPolyDataMapper, Lighting, vtkPGILighting);
-
-struct vtkPGIGIPolyDataMapper::Internals
-{
-  proxygi::gpu::GIResources Resources;
-  vtkOpenGLRenderWindow* Window = nullptr;
-  // Receivers (positions, normals, albedo: 9 floats per point) and results.
-  vtkNew<vtkOpenGLBufferObject> Receivers;
-  vtkNew<vtkOpenGLBufferObject> Results;
-  vtkNew<vtkOpenGLVertexArrayObject> VAO;
-  vtkSmartPointer<vtkTransformFeedback> Capture;
-  std::string CaptureKey;
-  vtkIdType Points = 0;
-  int ResultFloats = 0; // per point
-  bool HaveResults = false;
-  // What the last GI pass used, to skip it when nothing changed.
-  vtkMTimeType InputTime = 0, BakeUploaded = 0, SettingsTime = 0;
-  std::string AlbedoKey; // the receivers' albedo knobs
-  vtkPolyData* Input = nullptr;
-  std::array<double, 16> Matrix{};
-  int UploadedOrder = 0;
-  int ProxyCount = 0, PlaneCount = 0;
-  int ProgramHandle = 0;
-  bool GIInShaders = false;
-  // From the bake, as the GLSL reads them.
-  bool PlanesInLight = false;
-  std::vector<float> PlaneVisibility, Response, Albedos, PlaneAlbedos;
-  vtkSmartPointer<vtkTextureObject> ProxyAlbedo;
-  // Local lights: centre and radius (-1: point light), radiance.
-  std::vector<float> LocalLights, LocalRadiance;
-  int SphericalLightCount = 0;
-  std::string SphericalLightSummary;
-  bool WarnedBudget = false;
-  vtkTimeStamp ShaderModeTime;
-};
 
 vtkPGIGIPolyDataMapper::vtkPGIGIPolyDataMapper()
-  : GPU(new Internals)
+  : Scene(this)
 {
   this->SetNumberOfInputPorts(2);
-  this->Settings = vtkPGIGISettings::New();
-  this->Bake->SetSettings(this->Effective);
 }
 
-vtkPGIGIPolyDataMapper::~vtkPGIGIPolyDataMapper()
-{
-  this->SetLighting(nullptr);
-  this->Settings->UnRegister(this);
-}
+vtkPGIGIPolyDataMapper::~vtkPGIGIPolyDataMapper() = default;
 
 int vtkPGIGIPolyDataMapper::FillInputPortInformation(int port, vtkInformation* info)
 {
@@ -110,555 +31,44 @@ int vtkPGIGIPolyDataMapper::FillInputPortInformation(int port, vtkInformation* i
   return this->Superclass::FillInputPortInformation(port, info);
 }
 
-void vtkPGIGIPolyDataMapper::SetProxies(vtkPolyData* proxies)
-{
-  this->SetInputDataObject(1, proxies);
-}
-
-vtkPolyData* vtkPGIGIPolyDataMapper::GetProxies()
-{
-  if (this->GetNumberOfInputConnections(1) == 0)
-  {
-    return nullptr;
-  }
-  // The mapper's render updates port 0 only: bring the proxies' pipeline
-  // up to date here, so a change upstream re-executes it.
-  vtkAlgorithmOutput* connection = this->GetInputConnection(1, 0);
-  if (connection && connection->GetProducer())
-  {
-    connection->GetProducer()->Update(connection->GetIndex());
-  }
-  return vtkPolyData::SafeDownCast(this->GetInputDataObject(1, 0));
-}
-
-void vtkPGIGIPolyDataMapper::SetSettings(vtkPGIGISettings* settings)
-{
-  if (vtkPGIGISettings::Share(this, this->Settings, settings))
-  {
-    this->Modified();
-  }
-}
-
-const vtkPGIGISettings::Support& vtkPGIGIPolyDataMapper::GetSupport()
-{
-  static const vtkPGIGISettings::Support support = []
-  {
-    vtkPGIGISettings::Support s;
-    s.Backend = "GPU mapper";
-    s.MinOrder = proxygi::gpu::MinOrder;
-    s.MaxOrder = proxygi::gpu::MaxOrder;
-    s.ExpMethods = 1u << vtkPGIGISettings::EXP_HYB;
-    s.ExpDegree = false;
-    s.AccumulationOrder = false;
-    s.WindowSize = false;
-    s.ShadingPaths = 1u << vtkPGIGISettings::SHADING_PRODUCT_MATRIX;
-    s.Hierarchy = false;
-    s.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
-    return s;
-  }();
-  return support;
-}
-
-vtkMTimeType vtkPGIGIPolyDataMapper::GetMTime()
-{
-  vtkMTimeType t = std::max(this->Superclass::GetMTime(), this->Settings->GetMTime());
-  return this->Lighting ? std::max(t, this->Lighting->GetMTime()) : t;
-}
+pgiGIMapperCommonMembers(vtkPGIGIPolyDataMapper)
 
 void vtkPGIGIPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Proxies: " << this->GetProxies() << "\n";
-  os << indent << "Lighting: " << this->Lighting << "\n";
-  os << indent << "BlockerPlanes: " << this->Bake->GetNumberOfBlockerPlanes() << "\n";
-  os << indent << "Settings:\n";
-  this->Settings->PrintSelf(os, indent.GetNextIndent());
-  os << indent << "GlobalIllumination: " << this->GlobalIllumination << "\n";
-  os << indent << "Exposure: " << this->Exposure << "\n";
-  os << indent << "SRGBOutput: " << this->SRGBOutput << "\n";
-  os << indent << "CombineWithVTKLighting: " << this->CombineWithVTKLighting << "\n";
-  os << indent << "CaptureVisibility: " << this->CaptureVisibility << "\n";
-  os << indent << "AlwaysRecompute: " << this->AlwaysRecompute << "\n";
-  os << indent << "NumberOfGIUpdates: " << this->NumberOfGIUpdates << "\n";
-  os << indent << "GIStatus: " << this->GIStatus << "\n";
-}
-
-void vtkPGIGIPolyDataMapper::AddBlockerPlane(const double origin[3], const double normal[3])
-{
-  const double black[3] = { 0.0, 0.0, 0.0 };
-  this->AddBlockerPlane(origin, normal, black);
-}
-
-void vtkPGIGIPolyDataMapper::AddBlockerPlane(
-  const double origin[3], const double normal[3], const double albedo[3])
-{
-  if (this->Bake->GetNumberOfBlockerPlanes() >= proxygi::gpu::MaxPlanes)
-  {
-    vtkErrorMacro("At most " << proxygi::gpu::MaxPlanes << " blocker planes.");
-    return;
-  }
-  this->Bake->AddBlockerPlane(origin, normal, albedo);
-  this->Modified();
-}
-
-void vtkPGIGIPolyDataMapper::RemoveAllBlockerPlanes()
-{
-  this->Bake->RemoveAllBlockerPlanes();
-  this->Modified();
+  this->Scene.PrintSelf(os, indent, this->Options);
+  os << indent << "NumberOfGIUpdates: " << this->GetNumberOfGIUpdates() << "\n";
+  os << indent << "GIStatus: " << this->GetGIStatus() << "\n";
 }
 
 void vtkPGIGIPolyDataMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
-  Internals& g = *this->GPU;
-  g.Resources.ReleaseGraphicsResources(window);
-  g.Receivers->ReleaseGraphicsResources();
-  g.Results->ReleaseGraphicsResources();
-  g.VAO->ReleaseGraphicsResources();
-  g.Capture = nullptr;
-  g.ProgramHandle = 0;
-  g.CaptureKey.clear();
-  g.HaveResults = false;
-  if (g.ProxyAlbedo)
-  {
-    g.ProxyAlbedo->ReleaseGraphicsResources(window);
-    g.ProxyAlbedo = nullptr;
-  }
-  g.Window = nullptr;
-  g.Input = nullptr;
-  g.UploadedOrder = 0;
+  this->GI.ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
-}
-
-namespace
-{
-// One transform-feedback description per set of captured outputs, shared by
-// all mappers: the shader cache relinks a program whenever it is handed a
-// different vtkTransformFeedback object, and mappers of the same order share
-// their compute program.
-vtkTransformFeedback* SharedCapture(int visibilityVec4s)
-{
-  static std::map<int, vtkSmartPointer<vtkTransformFeedback>> captures;
-  vtkSmartPointer<vtkTransformFeedback>& capture = captures[visibilityVec4s];
-  if (!capture)
-  {
-    capture = vtkSmartPointer<vtkTransformFeedback>::New();
-    capture->AddVarying(vtkTransformFeedback::Color_RGBA_F, "pgiRadiance");
-    for (int k = 0; k < visibilityVec4s; ++k)
-    {
-      capture->AddVarying(vtkTransformFeedback::Color_RGBA_F, "pgiVisibility" + std::to_string(k));
-    }
-  }
-  return capture;
-}
-} // namespace
-
-bool vtkPGIGIPolyDataMapper::PrepareBake(std::ostringstream& why)
-{
-  this->Bake->SetProxies(this->GetProxies());
-  this->Bake->SetLighting(this->Lighting);
-  if (!this->Bake->UpdateFor(this, this->Settings, GetSupport(), this->SettingsNotes))
-  {
-    return false;
-  }
-  if (this->Bake->GetBuildTime() != this->GPU->BakeUploaded)
-  {
-    why << "scene; ";
-  }
-  return true;
-}
-
-void vtkPGIGIPolyDataMapper::UploadBake(vtkOpenGLRenderWindow* window, std::ostringstream& why)
-{
-  Internals& g = *this->GPU;
-  const proxygi::BakedScene& b = this->Bake->GetScene();
-  if (this->Bake->GetBuildTime() == g.BakeUploaded && g.UploadedOrder == b.Order && g.ProxyAlbedo)
-  {
-    return;
-  }
-  const int n2 = b.Order * b.Order;
-  const double* light = b.Light.data();
-  g.Resources.SetLight(light, light + n2, light + 2 * n2);
-  const double* above = b.LightAbovePlanes.data();
-  if (b.PlanesInLight)
-  {
-    g.Resources.SetLightAbovePlanes(above, above + n2, above + 2 * n2);
-  }
-  else
-  {
-    g.Resources.SetLightAbovePlanes(nullptr, nullptr, nullptr);
-  }
-  g.PlanesInLight = b.PlanesInLight;
-  g.PlaneVisibility.assign(b.PlaneVisibility.begin(), b.PlaneVisibility.end());
-  g.Response = b.InterleavedResponse;
-  g.Resources.SetBlockers(
-    proxygi::gpu::PackSpheres(b.SceneBlockers), proxygi::gpu::PackPlanes(b.SceneBlockers));
-  g.ProxyCount = static_cast<int>(b.SceneBlockers.Spheres());
-  g.PlaneCount = static_cast<int>(b.SceneBlockers.Planes());
-  g.PlaneAlbedos = proxygi::gpu::PackPlaneAlbedos(b.SceneBlockers);
-  proxygi::gpu::UploadProxyAlbedos(window, b.SceneBlockers, g.Albedos, g.ProxyAlbedo);
-
-  // The shadowed bounce's spherical lights after the bake's first pass.
-  g.SphericalLightCount = b.RunShadowed ? static_cast<int>(b.Lights.Count()) : 0;
-  g.SphericalLightSummary = b.SphericalLightsSummary;
-  g.Resources.SetSphericalLights(b.RunShadowed ? &b.Lights : nullptr,
-    this->Effective->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT);
-
-  // Local lights as pgiLocalLights reads them: radius -1 for a point light.
-  g.LocalLights.clear();
-  g.LocalRadiance.clear();
-  const std::size_t lights = b.Locals.Count();
-  for (std::size_t k = 0; k < lights && k < static_cast<std::size_t>(MaxLocalLights); ++k)
-  {
-    g.LocalLights.insert(g.LocalLights.end(),
-      { b.Locals.X[k], b.Locals.Y[k], b.Locals.Z[k], b.Locals.Point[k] ? -1.0f : b.Locals.R[k] });
-    g.LocalRadiance.insert(
-      g.LocalRadiance.end(), &b.Locals.Radiance[3 * k], &b.Locals.Radiance[3 * k] + 3);
-  }
-  if (lights > static_cast<std::size_t>(MaxLocalLights))
-  {
-    vtkErrorMacro("At most " << MaxLocalLights << " local lights on the GPU; " << lights
-                             << " given, the first " << MaxLocalLights << " used.");
-  }
-  g.Resources.SetAnalyticLightTable(!g.LocalLights.empty());
-  g.BakeUploaded = this->Bake->GetBuildTime();
-  g.UploadedOrder = b.Order;
-  (void)why;
-}
-
-void vtkPGIGIPolyDataMapper::UploadReceivers(vtkPolyData* input, std::ostringstream& why)
-{
-  Internals& g = *this->GPU;
-  const vtkIdType n = input->GetNumberOfPoints();
-  const char* albedoArray = this->Effective->GetAlbedoArrayName();
-  const double* fallback = this->Effective->GetDefaultAlbedo();
-  std::ostringstream key;
-  key.precision(17);
-  key << (albedoArray ? albedoArray : "") << " " << fallback[0] << " " << fallback[1] << " "
-      << fallback[2];
-  if (g.Input == input && input->GetMTime() == g.InputTime && g.Points == n &&
-    key.str() == g.AlbedoKey)
-  {
-    return;
-  }
-  vtkSmartPointer<vtkDataArray> normals = proxygi::ReceiverNormals(input);
-  std::vector<float> data(9 * static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    double p[3], nd[3] = { 0.0, 0.0, 1.0 }, albedo[3];
-    input->GetPoint(i, p);
-    // Normalised in double, as the CPU filter does, so both start from
-    // the same floats.
-    if (normals)
-    {
-      normals->GetTuple(i, nd);
-      const double len = std::sqrt(nd[0] * nd[0] + nd[1] * nd[1] + nd[2] * nd[2]);
-      if (len > 0.0)
-      {
-        nd[0] /= len;
-        nd[1] /= len;
-        nd[2] /= len;
-      }
-      else
-      {
-        nd[0] = nd[1] = 0.0;
-        nd[2] = 1.0;
-      }
-    }
-    proxygi::AlbedoOf(input, albedoArray, i, fallback, albedo);
-    float* row = &data[9 * i];
-    for (int k = 0; k < 3; ++k)
-    {
-      row[k] = static_cast<float>(p[k]);
-      row[3 + k] = static_cast<float>(nd[k]);
-      row[6 + k] = static_cast<float>(albedo[k]);
-    }
-  }
-  g.Receivers->Upload(data, vtkOpenGLBufferObject::ArrayBuffer);
-  g.Input = input;
-  g.InputTime = input->GetMTime();
-  g.Points = n;
-  g.AlbedoKey = key.str();
-  why << "mesh; ";
-}
-
-bool vtkPGIGIPolyDataMapper::RunGIPass(vtkOpenGLRenderWindow* window,
-  const std::array<double, 16>& matrix, int visibilityVec4s, bool resize)
-{
-  Internals& g = *this->GPU;
-  const proxygi::BakedScene& b = this->Bake->GetScene();
-  vtkPGIGISettings* settings = this->Effective;
-  const int order = b.Order, n2 = order * order;
-  const vtkIdType n = g.Points;
-  std::string vs = pgiGIComputeVS;
-  std::ostringstream captureDec, captureImpl;
-  for (int k = 0; k < visibilityVec4s; ++k)
-  {
-    captureDec << "out vec4 pgiVisibility" << k << ";\n";
-    captureImpl << "  pgiVisibility" << k << " = vec4(";
-    for (int c = 0; c < 4; ++c)
-    {
-      const int i = 4 * k + c;
-      captureImpl << (c ? ", " : "") << (i < n2 ? "g[" + std::to_string(i) + "]" : "0.0");
-    }
-    captureImpl << ");\n";
-  }
-  // The shadowed bounce's code only where it runs (it is the costliest to compile).
-  const bool sphericalLights = g.SphericalLightCount > 0;
-  vtkShaderProgram::Substitute(vs, "//PGI::Defines",
-    std::string("#define PGI_SPHERICAL_LIGHTS ") + (sphericalLights ? "1" : "0"));
-  vtkShaderProgram::Substitute(vs, "//PGI::Library", proxygi::gpu::LibrarySource(order));
-  vtkShaderProgram::Substitute(vs, "//PGI::ISLibrary", proxygi::gpu::IndirectLibrarySource());
-  vtkShaderProgram::Substitute(vs, "//PGI::SLLibrary",
-    sphericalLights ? proxygi::gpu::SphericalLightsLibrarySource(g.SphericalLightCount) : "");
-  vtkShaderProgram::Substitute(vs, "//PGI::Capture::Dec", captureDec.str());
-  vtkShaderProgram::Substitute(vs, "//PGI::Capture::Impl", captureImpl.str());
-  vtkShaderProgram* program =
-    window->GetShaderCache()->ReadyShaderProgram(vs.c_str(), pgiGIComputeFS, "", g.Capture);
-  if (!program)
-  {
-    vtkErrorMacro("The GI shader did not compile.");
-    return false;
-  }
-  if (program->GetHandle() != g.ProgramHandle)
-  {
-    g.VAO->ShaderProgramChanged();
-    g.ProgramHandle = program->GetHandle();
-  }
-  g.Resources.SetSettings(proxygi::gpu::KernelSettingsOf(settings));
-  g.Resources.Bind(program);
-  // Column-major uploads of the actor matrix and its normal matrix.
-  float modelToWorld[16];
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      modelToWorld[4 * c + r] = static_cast<float>(matrix[4 * r + c]);
-    }
-  }
-  vtkNew<vtkMatrix3x3> normalMatrix;
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      normalMatrix->SetElement(r, c, matrix[4 * r + c]);
-    }
-  }
-  normalMatrix->Invert();
-  normalMatrix->Transpose();
-  float normalToWorld[9];
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      normalToWorld[3 * c + r] = static_cast<float>(normalMatrix->GetElement(r, c));
-    }
-  }
-  const bool indirect = settings->GetIndirect();
-  const bool shadowedMode =
-    indirect && settings->GetIndirectMode() == vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
-  program->SetUniformMatrix4x4("pgiModelToWorld", modelToWorld);
-  program->SetUniformMatrix3x3("pgiNormalToWorld", normalToWorld);
-  const bool identity =
-    matrix == std::array<double, 16>{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
-  program->SetUniformi("pgiMoved", identity ? 0 : 1);
-  program->SetUniformi("pgiShadows", settings->GetShadows() ? 1 : 0);
-  program->SetUniformi("pgiPlanesInLight", g.PlanesInLight ? 1 : 0);
-  program->SetUniform1fv("pgiPlaneVisibility", n2, g.PlaneVisibility.data());
-  program->SetUniformi("pgiIndirect", indirect ? 1 : 0);
-  program->SetUniformi("pgiIndirectShadowed", shadowedMode ? 1 : 0);
-  program->SetUniformi("pgiPlaneBounceShadows", settings->GetPlaneBounceShadows() ? 1 : 0);
-  program->SetUniform3fv("pgiResponse", n2, g.Response.data());
-  program->SetUniform3fv("pgiPlaneAlbedo", proxygi::gpu::MaxPlanes, g.PlaneAlbedos.data());
-  {
-    const int lights = static_cast<int>(g.LocalLights.size() / 4);
-    std::vector<float> centres(4 * MaxLocalLights, 0.0f), radiance(3 * MaxLocalLights, 0.0f);
-    std::copy(g.LocalLights.begin(), g.LocalLights.end(), centres.begin());
-    std::copy(g.LocalRadiance.begin(), g.LocalRadiance.end(), radiance.begin());
-    program->SetUniformi("pgiNumLocalLights", lights);
-    program->SetUniform4fv("pgiLocalLight", MaxLocalLights, centres.data());
-    program->SetUniform3fv("pgiLocalRadiance", MaxLocalLights, radiance.data());
-    program->SetUniformf("pgiLobeMinTheta",
-      lights > 0 ? static_cast<float>(g.Resources.GetAnalyticLightMinTheta()) : 0.0f);
-  }
-  g.ProxyAlbedo->Activate();
-  program->SetUniformi("pgiProxyAlbedo", g.ProxyAlbedo->GetTextureUnit());
-
-  g.VAO->Bind();
-  const struct
-  {
-    const char* Name;
-    int Offset;
-  } attributes[] = { { "pgiPositionMC", 0 }, { "pgiNormalMC", 12 }, { "pgiAlbedoMC", 24 } };
-  for (const auto& a : attributes)
-  {
-    if (program->IsAttributeUsed(a.Name) &&
-      !g.VAO->AddAttributeArray(program, g.Receivers, a.Name, a.Offset, 36, VTK_FLOAT, 3, false))
-    {
-      vtkErrorMacro("Could not bind " << a.Name << ".");
-    }
-  }
-  const int floats = 4 * (1 + visibilityVec4s);
-  if (!g.HaveResults || g.ResultFloats != floats || g.Results->GetHandle() == 0 || resize)
-  {
-    g.Results->Upload(std::vector<float>(static_cast<std::size_t>(n) * floats, 0.0f),
-      vtkOpenGLBufferObject::ArrayBuffer);
-    g.ResultFloats = floats;
-  }
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, g.Results->GetHandle());
-  glEnable(GL_RASTERIZER_DISCARD);
-  glBeginTransformFeedback(GL_POINTS);
-  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(n));
-  glEndTransformFeedback();
-  glDisable(GL_RASTERIZER_DISCARD);
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-  g.VAO->Release();
-  g.ProxyAlbedo->Deactivate();
-  g.Resources.Unbind();
-  return true;
-}
-
-void vtkPGIGIPolyDataMapper::ComposeStatus(vtkIdType points, const std::string& reasons)
-{
-  Internals& g = *this->GPU;
-  vtkPGIGISettings* settings = this->Effective;
-  const bool indirect = settings->GetIndirect();
-  const bool shadowedMode =
-    indirect && settings->GetIndirectMode() == vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
-  std::ostringstream status;
-  status << "GI on the GPU: " << points << " vertices, " << g.ProxyCount << " proxies, "
-         << g.PlaneCount << " planes, order " << g.UploadedOrder;
-  if (reasons.empty() && !this->AlwaysRecompute)
-  {
-    status << "; reused (nothing changed)";
-  }
-  else
-  {
-    status << ", " << (settings->GetShadows() ? "SHEXP shadows (HYB)" : "no shadows")
-           << (g.PlaneCount == 0    ? ""
-                  : g.PlanesInLight ? ", planes carried by the light"
-                                    : ", planes in log space")
-           << (!indirect ? ""
-                  : shadowedMode
-                  ? ", one-bounce indirect (shadowed: " + g.SphericalLightSummary + ")"
-                  : std::string(", one-bounce indirect (averaged, xi)"))
-           << (indirect && settings->GetPlaneBounceShadows() && g.PlaneCount > 0
-                  ? ", planes' bounce shadowed"
-                  : "");
-    if (!g.LocalLights.empty())
-    {
-      status << ", " << g.LocalLights.size() / 4 << " local lights";
-    }
-    // Mesa's llvmpipe ends every loop of a shader invocation once all its
-    // loops together ran 65535 iterations (gallivm's loop limiter): past the
-    // sizes measured to stay inside it (Documentation/Rendering.md), say so.
-    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    const bool llvmpipe = renderer && std::strstr(renderer, "llvmpipe");
-    const bool overBudget =
-      g.ProxyCount > 1000 || (indirect && g.ProxyCount > 600) || g.SphericalLightCount > 96;
-    if (llvmpipe && overBudget)
-    {
-      status << "; on llvmpipe beyond its loop budget (more than 1000 proxies, 600 with the "
-                "bounce or 96 spherical lights): results may be cut short";
-      if (!g.WarnedBudget)
-      {
-        vtkWarningMacro(<< "llvmpipe stops a shader's loops after 65535 iterations in all: with "
-                        << g.ProxyCount << " proxies and " << g.SphericalLightCount
-                        << " spherical lights the GI pass may be cut short. Use a hardware "
-                           "GPU, fewer proxies or vtkPGIGlobalIllumination.");
-        g.WarnedBudget = true;
-      }
-    }
-    status << "; recomputed ("
-           << (reasons.empty() ? "AlwaysRecompute" : reasons.substr(0, reasons.size() - 2)) << ")";
-  }
-  for (const std::string& note : this->SettingsNotes)
-  {
-    status << "; not honoured: " << note;
-  }
-  this->GIStatus = status.str();
 }
 
 bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
 {
-  Internals& g = *this->GPU;
   vtkPolyData* input = this->CurrentInput;
-  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!this->GlobalIllumination || !input || input->GetNumberOfPoints() == 0 || !window)
+  if (!this->Options.GlobalIllumination || !input || input->GetNumberOfPoints() == 0)
   {
-    this->GIStatus = !this->GlobalIllumination ? "GI off: VTK lighting" : "GI: nothing to draw";
+    this->GI.SetStatus(
+      !this->Options.GlobalIllumination ? "GI off: VTK lighting" : "GI: nothing to draw");
     return false;
   }
-  std::ostringstream why;
-  if (g.Window != window)
-  {
-    if (g.Window)
-    {
-      this->ReleaseGraphicsResources(g.Window);
-    }
-    g.Window = window;
-    why << "new context; ";
-  }
-  if (!this->PrepareBake(why))
+  if (!this->Scene.PrepareBake(this->GetProxies()))
   {
     return false;
   }
-  const int order = this->Bake->GetScene().Order, n2 = order * order;
-  if (!g.Resources.SetOrder(window, order))
-  {
-    vtkErrorMacro("Could not upload the SH tables of order " << order << ".");
-    return false;
-  }
-  this->UploadBake(window, why);
-  this->UploadReceivers(input, why);
-
-  // The actor's matrix (the mesh moves, proxies stay in world coordinates).
-  std::array<double, 16> matrix;
-  vtkMatrix4x4* m = act->GetMatrix();
-  std::copy(&m->Element[0][0], &m->Element[0][0] + 16, matrix.begin());
-  if (matrix != g.Matrix)
-  {
-    why << "actor matrix; ";
-  }
-  if (this->Effective->GetMTime() != g.SettingsTime)
-  {
-    why << "settings; ";
-  }
-  // The compute program: order and the captured outputs fix the source.
-  const int visibilityVec4s = this->CaptureVisibility ? (n2 + 3) / 4 : 0;
-  const std::string key = std::to_string(order) + "/" + std::to_string(visibilityVec4s);
-  if (!g.Capture || g.CaptureKey != key)
-  {
-    g.Capture = SharedCapture(visibilityVec4s);
-    g.CaptureKey = key;
-    g.HaveResults = false;
-    why << "program; ";
-  }
-  const std::string reasons = why.str();
-  if (g.HaveResults && reasons.empty() && !this->AlwaysRecompute)
-  {
-    this->ComposeStatus(input->GetNumberOfPoints(), reasons);
-    return true;
-  }
-  if (!this->RunGIPass(window, matrix, visibilityVec4s, reasons.find("mesh") != std::string::npos))
-  {
-    return false;
-  }
-  g.Matrix = matrix;
-  g.SettingsTime = this->Effective->GetMTime();
-  g.HaveResults = true;
-  ++this->NumberOfGIUpdates;
-  this->ComposeStatus(input->GetNumberOfPoints(), reasons);
-  return true;
+  return this->GI.Update(this, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), act,
+    { { input, 0 } }, input->GetNumberOfPoints(), this->Scene.Bake, this->Scene.Notes,
+    this->Options);
 }
 
 void vtkPGIGIPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* act)
 {
-  const bool gi = this->UpdateGI(ren, act);
-  if (gi != this->GPU->GIInShaders)
-  {
-    this->GPU->GIInShaders = gi;
-    this->GPU->ShaderModeTime.Modified();
-  }
+  this->GI.SetInShaders(this->UpdateGI(ren, act));
   this->Superclass::RenderPieceStart(ren, act);
 }
 
@@ -666,88 +76,31 @@ bool vtkPGIGIPolyDataMapper::GetNeedToRebuildShaders(
   vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
 {
   return this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act) ||
-    cellBO.ShaderSourceTime < this->GPU->ShaderModeTime;
+    cellBO.ShaderSourceTime < this->GI.GetShaderModeTime();
 }
 
 void vtkPGIGIPolyDataMapper::ReplaceShaderValues(
   std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act)
 {
-  if (!this->GPU->GIInShaders)
+  if (this->GI.InShaders())
   {
-    this->Superclass::ReplaceShaderValues(shaders, ren, act);
-    return;
+    this->GI.ReplaceShaderValuesBefore(shaders);
   }
-  // Ours first, keeping VTK's tags for VTK; the colour override goes after
-  // VTK's lighting code, hence a tag of our own that VTK leaves alone.
-  std::string vs = shaders[vtkShader::Vertex]->GetSource();
-  std::string fs = shaders[vtkShader::Fragment]->GetSource();
-  vtkShaderProgram::Substitute(vs, "//VTK::Color::Dec", pgiGIMapperVS, false);
-  vtkShaderProgram::Substitute(vs, "//VTK::Color::Impl", pgiGIMapperVSImpl, false);
-  std::string dec = pgiGIMapperFS;
-  vtkShaderProgram::Substitute(dec, "//PGI::SRGB", pgiSRGBGLSL);
-  vtkShaderProgram::Substitute(fs, "//VTK::Light::Dec", dec, false);
-  vtkShaderProgram::Substitute(
-    fs, "//VTK::Light::Impl", "//VTK::Light::Impl\n//PGI::GI::Impl\n", false);
-  shaders[vtkShader::Vertex]->SetSource(vs);
-  shaders[vtkShader::Fragment]->SetSource(fs);
   this->Superclass::ReplaceShaderValues(shaders, ren, act);
-  fs = shaders[vtkShader::Fragment]->GetSource();
-  vtkShaderProgram::Substitute(fs, "//PGI::GI::Impl", pgiGIMapperFSImpl, false);
-  shaders[vtkShader::Fragment]->SetSource(fs);
+  if (this->GI.InShaders())
+  {
+    this->GI.ReplaceShaderValuesAfter(shaders);
+  }
 }
 
 void vtkPGIGIPolyDataMapper::SetMapperShaderParameters(
   vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
 {
   this->Superclass::SetMapperShaderParameters(cellBO, ren, act);
-  Internals& g = *this->GPU;
-  vtkShaderProgram* program = cellBO.Program;
-  if (!g.GIInShaders || !program || !program->IsAttributeUsed("pgiRadianceMC"))
-  {
-    return;
-  }
-  // The results buffer may have been reallocated since the VAO last saw it.
-  cellBO.VAO->Bind();
-  if (!cellBO.VAO->AddAttributeArray(program, g.Results, "pgiRadianceMC", 0,
-        static_cast<size_t>(4 * g.ResultFloats), VTK_FLOAT, 4, false))
-  {
-    vtkErrorMacro("Could not bind the GI results.");
-  }
-  program->SetUniformf("pgiExposure", static_cast<float>(this->Exposure));
-  program->SetUniformi("pgiCombineWithVTKLighting", this->CombineWithVTKLighting ? 1 : 0);
-  program->SetUniformi("pgiSRGBOutput", this->SRGBOutput ? 1 : 0);
+  this->GI.SetShaderParameters(this, cellBO, this->Options);
 }
 
 bool vtkPGIGIPolyDataMapper::GetPerVertexResults(vtkFloatArray* radiance, vtkFloatArray* visibility)
 {
-  Internals& g = *this->GPU;
-  if (!g.HaveResults || !g.Window || !radiance)
-  {
-    return false;
-  }
-  g.Window->MakeCurrent();
-  const std::size_t count = static_cast<std::size_t>(g.Points) * g.ResultFloats;
-  std::vector<float> data(count);
-  glBindBuffer(GL_ARRAY_BUFFER, g.Results->GetHandle());
-  glGetBufferSubData(
-    GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(float)), data.data());
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-  const int n2 = this->GPU->UploadedOrder * this->GPU->UploadedOrder;
-  radiance->SetNumberOfComponents(3);
-  radiance->SetNumberOfTuples(g.Points);
-  if (visibility)
-  {
-    visibility->SetNumberOfComponents(g.ResultFloats > 4 ? n2 : 1);
-    visibility->SetNumberOfTuples(g.ResultFloats > 4 ? g.Points : 0);
-  }
-  for (vtkIdType i = 0; i < g.Points; ++i)
-  {
-    const float* row = &data[static_cast<std::size_t>(i) * g.ResultFloats];
-    radiance->SetTypedTuple(i, row);
-    if (visibility && g.ResultFloats > 4)
-    {
-      visibility->SetTypedTuple(i, row + 4);
-    }
-  }
-  return glGetError() == GL_NO_ERROR;
+  return this->GI.GetResults(0, this->GI.GetNumberOfVertices(), radiance, visibility);
 }

@@ -65,19 +65,14 @@
 #define vtkPGIGIPolyDataMapper_h
 
 #include "ProxyGIRenderingModule.h"
-#include "vtkNew.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkPGIGIBake.h"
 #include "vtkPGIGISettings.h"
+#include "pgiVertexGI.h" // for the shared GPU implementation
 
-#include <array>
-#include <memory>
-#include <sstream>
 #include <string>
-#include <vector>
 
 class vtkFloatArray;
-class vtkOpenGLRenderWindow;
 class vtkPGILighting;
 class vtkPolyData;
 
@@ -95,39 +90,39 @@ public:
   void SetProxiesConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
 
   virtual void SetLighting(vtkPGILighting* lighting);
-  vtkGetObjectMacro(Lighting, vtkPGILighting);
+  vtkPGILighting* GetLighting() { return this->Scene.Lighting; }
 
   /// The GI knobs (never null); SetSettings(nullptr) restores a private default set.
-  vtkPGIGISettings* GetSettings() { return this->Settings; }
+  vtkPGIGISettings* GetSettings() { return this->Scene.Settings; }
   virtual void SetSettings(vtkPGIGISettings* settings);
   /// What this mapper honours.
   static const vtkPGIGISettings::Support& GetSupport();
   /// The precompute this mapper reuses between GI passes.
-  vtkPGIGIBake* GetBake() { return this->Bake; }
+  vtkPGIGIBake* GetBake() { return this->Scene.Bake; }
 
   /// Infinite planes blocking the half-space beneath them (at most 8);
   /// albedo (default 0) for the indirect light they reflect.
   void AddBlockerPlane(const double origin[3], const double normal[3]);
   void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
   void RemoveAllBlockerPlanes();
-  static constexpr int MaxLocalLights = 16;
+  static constexpr int MaxLocalLights = proxygi::gpu::VertexGI::MaxLocalLights;
 
-  vtkSetMacro(GlobalIllumination, bool);
-  vtkGetMacro(GlobalIllumination, bool);
+  void SetGlobalIllumination(bool on);
+  bool GetGlobalIllumination() const { return this->Options.GlobalIllumination; }
   vtkBooleanMacro(GlobalIllumination, bool);
-  vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
-  vtkGetMacro(Exposure, double);
-  vtkSetMacro(SRGBOutput, bool);
-  vtkGetMacro(SRGBOutput, bool);
+  void SetExposure(double exposure);
+  double GetExposure() const { return this->Options.Exposure; }
+  void SetSRGBOutput(bool on);
+  bool GetSRGBOutput() const { return this->Options.SRGBOutput; }
   vtkBooleanMacro(SRGBOutput, bool);
-  vtkSetMacro(CombineWithVTKLighting, bool);
-  vtkGetMacro(CombineWithVTKLighting, bool);
+  void SetCombineWithVTKLighting(bool on);
+  bool GetCombineWithVTKLighting() const { return this->Options.CombineWithVTKLighting; }
   vtkBooleanMacro(CombineWithVTKLighting, bool);
-  vtkSetMacro(CaptureVisibility, bool);
-  vtkGetMacro(CaptureVisibility, bool);
+  void SetCaptureVisibility(bool on);
+  bool GetCaptureVisibility() const { return this->Options.CaptureVisibility; }
   vtkBooleanMacro(CaptureVisibility, bool);
-  vtkSetMacro(AlwaysRecompute, bool);
-  vtkGetMacro(AlwaysRecompute, bool);
+  void SetAlwaysRecompute(bool on);
+  bool GetAlwaysRecompute() const { return this->Options.AlwaysRecompute; }
   vtkBooleanMacro(AlwaysRecompute, bool);
 
   vtkMTimeType GetMTime() override;
@@ -141,9 +136,9 @@ public:
   bool GetPerVertexResults(vtkFloatArray* radiance, vtkFloatArray* visibility = nullptr);
 
   /// How many times the GI pass ran (it is skipped when nothing changed).
-  vtkGetMacro(NumberOfGIUpdates, int);
+  int GetNumberOfGIUpdates() const { return this->GI.GetNumberOfUpdates(); }
   /// What the last frame did and why, one line (e.g. for logs).
-  const std::string& GetGIStatus() const { return this->GIStatus; }
+  const std::string& GetGIStatus() const { return this->GI.GetStatus(); }
 
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
@@ -161,33 +156,12 @@ protected:
 
   /// Runs the GI pass if anything it depends on changed; false if GI is off.
   bool UpdateGI(vtkRenderer* ren, vtkActor* act);
-  // The stages of UpdateGI.
-  bool PrepareBake(std::ostringstream& why);
-  void UploadBake(vtkOpenGLRenderWindow* window, std::ostringstream& why);
-  void UploadReceivers(vtkPolyData* input, std::ostringstream& why);
-  bool RunGIPass(vtkOpenGLRenderWindow* window, const std::array<double, 16>& matrix,
-    int visibilityVec4s, bool resize);
-  void ComposeStatus(vtkIdType points, const std::string& reasons);
 
-  vtkPolyData* ProxiesData = nullptr;
-  vtkPGILighting* Lighting = nullptr;
-  vtkPGIGISettings* Settings = nullptr;
-  vtkNew<vtkPGIGISettings> Effective;
-  vtkNew<vtkPGIGIBake> Bake;
-  std::vector<std::string> SettingsNotes;
-  bool GlobalIllumination = true;
-  double Exposure = 1.0;
-  bool SRGBOutput = true;
-  bool CombineWithVTKLighting = false;
-  bool CaptureVisibility = false;
-  bool AlwaysRecompute = false;
-  int NumberOfGIUpdates = 0;
-  std::string GIStatus;
+  proxygi::gpu::MapperScene Scene;
+  proxygi::gpu::VertexGI GI;
+  proxygi::gpu::VertexGIOptions Options;
 
 private:
-  struct Internals;
-  std::unique_ptr<Internals> GPU;
-
   vtkPGIGIPolyDataMapper(const vtkPGIGIPolyDataMapper&) = delete;
   void operator=(const vtkPGIGIPolyDataMapper&) = delete;
 };
