@@ -576,11 +576,11 @@ void VertexGI::ComposeStatus(vtkObject* owner, vtkPGIGIBake* bake, const std::st
                 "bounce or 96 spherical lights): results may be cut short";
       if (!g.WarnedBudget)
       {
-        vtkWarningWithObjectMacro(owner,
-          << "llvmpipe stops a shader's loops after 65535 iterations in all: with " << g.ProxyCount
-          << " proxies and " << g.SphericalLightCount
-          << " spherical lights the GI pass may be cut short. Use a hardware "
-             "GPU, fewer proxies or vtkPGIGlobalIllumination.");
+        vtkWarningWithObjectMacro(
+          owner, << "llvmpipe stops a shader's loops after 65535 iterations in all: with "
+                 << g.ProxyCount << " proxies and " << g.SphericalLightCount
+                 << " spherical lights the GI pass may be cut short. Use a hardware "
+                    "GPU, fewer proxies or vtkPGIGlobalIllumination.");
         g.WarnedBudget = true;
       }
     }

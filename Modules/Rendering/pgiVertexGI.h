@@ -137,8 +137,8 @@ public:
    * The last pass's results for `count` vertices from `start` of the
    * buffer: radiance (3 components) and, when captured, the visibility.
    */
-  bool GetResults(vtkIdType start, vtkIdType count, vtkFloatArray* radiance,
-    vtkFloatArray* visibility) const;
+  bool GetResults(
+    vtkIdType start, vtkIdType count, vtkFloatArray* radiance, vtkFloatArray* visibility) const;
   vtkIdType GetNumberOfVertices() const;
 
   int GetNumberOfUpdates() const { return this->Updates; }
@@ -149,9 +149,8 @@ public:
 
 private:
   void UploadBake(vtkObject* owner, vtkOpenGLRenderWindow* window, vtkPGIGIBake* bake);
-  void UploadReceivers(
-    vtkPGIGIBake* bake, const std::vector<ReceiverBlock>& blocks, vtkIdType vertices,
-    std::string& why);
+  void UploadReceivers(vtkPGIGIBake* bake, const std::vector<ReceiverBlock>& blocks,
+    vtkIdType vertices, std::string& why);
   bool RunGIPass(vtkObject* owner, vtkOpenGLRenderWindow* window, vtkPGIGIBake* bake,
     int visibilityVec4s, bool resize);
   void ComposeStatus(vtkObject* owner, vtkPGIGIBake* bake, const std::string& reasons,
@@ -180,76 +179,75 @@ private:
   }
 
 #define pgiGIMapperCommonMembers(cls)                                                              \
-void cls::SetProxies(vtkPolyData* proxies)                                                         \
-{                                                                                                  \
-  this->SetInputDataObject(1, proxies);                                                            \
-}                                                                                                  \
-                                                                                                   \
-vtkPolyData* cls::GetProxies()                                                                     \
-{                                                                                                  \
-  return proxygi::gpu::MapperScene::ProxiesOf(this);                                               \
-}                                                                                                  \
-                                                                                                   \
-void cls::SetLighting(vtkPGILighting* lighting)                                                    \
-{                                                                                                  \
-  if (this->Scene.SetLighting(lighting))                                                           \
+  void cls::SetProxies(vtkPolyData* proxies)                                                       \
   {                                                                                                \
+    this->SetInputDataObject(1, proxies);                                                          \
+  }                                                                                                \
+                                                                                                   \
+  vtkPolyData* cls::GetProxies()                                                                   \
+  {                                                                                                \
+    return proxygi::gpu::MapperScene::ProxiesOf(this);                                             \
+  }                                                                                                \
+                                                                                                   \
+  void cls::SetLighting(vtkPGILighting* lighting)                                                  \
+  {                                                                                                \
+    if (this->Scene.SetLighting(lighting))                                                         \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+                                                                                                   \
+  void cls::SetSettings(vtkPGIGISettings* settings)                                                \
+  {                                                                                                \
+    if (this->Scene.SetSettings(settings))                                                         \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+                                                                                                   \
+  const vtkPGIGISettings::Support& cls::GetSupport()                                               \
+  {                                                                                                \
+    return proxygi::gpu::MapperScene::Support();                                                   \
+  }                                                                                                \
+                                                                                                   \
+  vtkMTimeType cls::GetMTime()                                                                     \
+  {                                                                                                \
+    return this->Scene.GetMTime(this->Superclass::GetMTime());                                     \
+  }                                                                                                \
+                                                                                                   \
+  void cls::AddBlockerPlane(const double origin[3], const double normal[3])                        \
+  {                                                                                                \
+    const double black[3] = { 0.0, 0.0, 0.0 };                                                     \
+    this->AddBlockerPlane(origin, normal, black);                                                  \
+  }                                                                                                \
+                                                                                                   \
+  void cls::AddBlockerPlane(                                                                       \
+    const double origin[3], const double normal[3], const double albedo[3])                        \
+  {                                                                                                \
+    if (this->Scene.AddBlockerPlane(origin, normal, albedo))                                       \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+                                                                                                   \
+  void cls::RemoveAllBlockerPlanes()                                                               \
+  {                                                                                                \
+    this->Scene.RemoveAllBlockerPlanes();                                                          \
     this->Modified();                                                                              \
   }                                                                                                \
-}                                                                                                  \
                                                                                                    \
-void cls::SetSettings(vtkPGIGISettings* settings)                                                  \
-{                                                                                                  \
-  if (this->Scene.SetSettings(settings))                                                           \
+  void cls::SetExposure(double exposure)                                                           \
   {                                                                                                \
-    this->Modified();                                                                              \
+    exposure = std::max(0.0, exposure);                                                            \
+    if (this->Options.Exposure != exposure)                                                        \
+    {                                                                                              \
+      this->Options.Exposure = exposure;                                                           \
+      this->Modified();                                                                            \
+    }                                                                                              \
   }                                                                                                \
-}                                                                                                  \
-                                                                                                   \
-const vtkPGIGISettings::Support& cls::GetSupport()                                                 \
-{                                                                                                  \
-  return proxygi::gpu::MapperScene::Support();                                                     \
-}                                                                                                  \
-                                                                                                   \
-vtkMTimeType cls::GetMTime()                                                                       \
-{                                                                                                  \
-  return this->Scene.GetMTime(this->Superclass::GetMTime());                                       \
-}                                                                                                  \
-                                                                                                   \
-void cls::AddBlockerPlane(const double origin[3], const double normal[3])                          \
-{                                                                                                  \
-  const double black[3] = { 0.0, 0.0, 0.0 };                                                       \
-  this->AddBlockerPlane(origin, normal, black);                                                    \
-}                                                                                                  \
-                                                                                                   \
-void cls::AddBlockerPlane(                                                                         \
-  const double origin[3], const double normal[3], const double albedo[3])                          \
-{                                                                                                  \
-  if (this->Scene.AddBlockerPlane(origin, normal, albedo))                                         \
-  {                                                                                                \
-    this->Modified();                                                                              \
-  }                                                                                                \
-}                                                                                                  \
-                                                                                                   \
-void cls::RemoveAllBlockerPlanes()                                                                 \
-{                                                                                                  \
-  this->Scene.RemoveAllBlockerPlanes();                                                            \
-  this->Modified();                                                                                \
-}                                                                                                  \
-                                                                                                   \
-void cls::SetExposure(double exposure)                                                             \
-{                                                                                                  \
-  exposure = std::max(0.0, exposure);                                                              \
-  if (this->Options.Exposure != exposure)                                                          \
-  {                                                                                                \
-    this->Options.Exposure = exposure;                                                             \
-    this->Modified();                                                                              \
-  }                                                                                                \
-}                                                                                                  \
-  pgiGIMapperOption(cls, GlobalIllumination, bool)                                                \
-  pgiGIMapperOption(cls, SRGBOutput, bool)                                                        \
-  pgiGIMapperOption(cls, CombineWithVTKLighting, bool)                                            \
-  pgiGIMapperOption(cls, CaptureVisibility, bool)                                                 \
-  pgiGIMapperOption(cls, AlwaysRecompute, bool)
+  pgiGIMapperOption(cls, GlobalIllumination, bool) pgiGIMapperOption(cls, SRGBOutput, bool)        \
+    pgiGIMapperOption(cls, CombineWithVTKLighting, bool)                                           \
+      pgiGIMapperOption(cls, CaptureVisibility, bool)                                              \
+        pgiGIMapperOption(cls, AlwaysRecompute, bool)
 
 #endif

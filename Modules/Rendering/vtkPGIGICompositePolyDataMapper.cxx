@@ -70,8 +70,11 @@ protected:
     }
     else if (parent->BakeReady)
     {
-      gi = this->GI.Update(parent, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()),
-        act, blocks, vertices, parent->Scene.Bake, parent->Scene.Notes, parent->Options);
+      const int before = this->GI.GetNumberOfUpdates();
+      gi = this->GI.Update(parent, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), act,
+        blocks, vertices, parent->Scene.Bake, parent->Scene.Notes, parent->Options);
+      // Counted by the parent: helpers come and go with the blocks' arrays.
+      parent->NumberOfGIUpdates += this->GI.GetNumberOfUpdates() - before;
     }
     this->GI.SetInShaders(gi);
   }
@@ -121,7 +124,7 @@ vtkPGIGICompositePolyDataMapper::~vtkPGIGICompositePolyDataMapper() = default;
 
 pgiGIMapperCommonMembers(vtkPGIGICompositePolyDataMapper)
 
-int vtkPGIGICompositePolyDataMapper::FillInputPortInformation(int port, vtkInformation* info)
+  int vtkPGIGICompositePolyDataMapper::FillInputPortInformation(int port, vtkInformation* info)
 {
   if (port == 1)
   {
@@ -156,16 +159,6 @@ bool vtkPGIGICompositePolyDataMapper::GetPerVertexResults(
     }
   }
   return false;
-}
-
-int vtkPGIGICompositePolyDataMapper::GetNumberOfGIUpdates()
-{
-  int updates = 0;
-  for (const auto& entry : this->Helpers)
-  {
-    updates += static_cast<vtkPGIGICompositeMapperHelper*>(entry.second)->GI.GetNumberOfUpdates();
-  }
-  return updates;
 }
 
 std::string vtkPGIGICompositePolyDataMapper::GetGIStatus()

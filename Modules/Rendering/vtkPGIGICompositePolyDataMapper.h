@@ -22,10 +22,10 @@
 #define vtkPGIGICompositePolyDataMapper_h
 
 #include "ProxyGIRenderingModule.h"
+#include "pgiVertexGI.h" // for the shared GPU implementation
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkPGIGIBake.h"
 #include "vtkPGIGISettings.h"
-#include "pgiVertexGI.h" // for the shared GPU implementation
 
 #include <string>
 
@@ -89,7 +89,7 @@ public:
     vtkPolyData* block, vtkFloatArray* radiance, vtkFloatArray* visibility = nullptr);
 
   /// GI passes run by all helpers together.
-  int GetNumberOfGIUpdates();
+  vtkGetMacro(NumberOfGIUpdates, int);
   /// What the last frame did and why (one line per helper, joined by " | ").
   std::string GetGIStatus();
 
@@ -103,6 +103,7 @@ protected:
   proxygi::gpu::MapperScene Scene;
   proxygi::gpu::VertexGIOptions Options;
   bool BakeReady = false;
+  int NumberOfGIUpdates = 0;
 
 private:
   friend class vtkPGIGICompositeMapperHelper;

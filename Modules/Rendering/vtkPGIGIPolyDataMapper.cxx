@@ -1,6 +1,5 @@
 #include "vtkPGIGIPolyDataMapper.h"
 
-
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLHelper.h"
@@ -33,7 +32,7 @@ int vtkPGIGIPolyDataMapper::FillInputPortInformation(int port, vtkInformation* i
 
 pgiGIMapperCommonMembers(vtkPGIGIPolyDataMapper)
 
-void vtkPGIGIPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
+  void vtkPGIGIPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Proxies: " << this->GetProxies() << "\n";

@@ -65,10 +65,10 @@
 #define vtkPGIGIPolyDataMapper_h
 
 #include "ProxyGIRenderingModule.h"
+#include "pgiVertexGI.h" // for the shared GPU implementation
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkPGIGIBake.h"
 #include "vtkPGIGISettings.h"
-#include "pgiVertexGI.h" // for the shared GPU implementation
 
 #include <string>
 
