@@ -1,0 +1,226 @@
+#include "vtkPGISurfaceRepresentation.h"
+
+#include "vtkAppendPolyData.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPGIGICompositePolyDataMapper.h"
+#include "vtkPGIGISettings.h"
+#include "vtkPGILighting.h"
+#include "vtkPGISphereSetApproximation.h"
+#include "vtkPVView.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <vector>
+
+vtkStandardNewMacro(vtkPGISurfaceRepresentation);
+
+namespace
+{
+vtkPGIGICompositePolyDataMapper* GIMapper(vtkMapper* mapper)
+{
+  return static_cast<vtkPGIGICompositePolyDataMapper*>(mapper);
+}
+} // namespace
+
+vtkPGISurfaceRepresentation::vtkPGISurfaceRepresentation()
+{
+  this->SetNumberOfInputPorts(2);
+  // Replace the superclass's mappers, then redo its pipeline set-up.
+  this->Mapper->Delete();
+  this->LODMapper->Delete();
+  auto* mapper = vtkPGIGICompositePolyDataMapper::New();
+  auto* lod = vtkPGIGICompositePolyDataMapper::New();
+  lod->SetSettings(mapper->GetSettings());
+  this->Mapper = mapper;
+  this->LODMapper = lod;
+  this->SetupDefaults();
+  this->Proxies = vtkSmartPointer<vtkPolyData>::New();
+}
+
+vtkPGISurfaceRepresentation::~vtkPGISurfaceRepresentation() = default;
+
+int vtkPGISurfaceRepresentation::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    return 1;
+  }
+  return this->Superclass::FillInputPortInformation(port, info);
+}
+
+void vtkPGISurfaceRepresentation::SetSettings(vtkPGIGISettings* settings)
+{
+  GIMapper(this->Mapper)->SetSettings(settings);
+  GIMapper(this->LODMapper)->SetSettings(settings);
+}
+
+void vtkPGISurfaceRepresentation::SetLighting(vtkPGILighting* lighting)
+{
+  GIMapper(this->Mapper)->SetLighting(lighting);
+  GIMapper(this->LODMapper)->SetLighting(lighting);
+}
+
+void vtkPGISurfaceRepresentation::SetNumberOfAutomaticProxies(int spheres)
+{
+  spheres = std::max(0, spheres);
+  if (spheres != this->NumberOfAutomaticProxies)
+  {
+    this->NumberOfAutomaticProxies = spheres;
+    this->MarkModified();
+  }
+}
+
+void vtkPGISurfaceRepresentation::SetExposure(double exposure)
+{
+  GIMapper(this->Mapper)->SetExposure(exposure);
+  GIMapper(this->LODMapper)->SetExposure(exposure);
+}
+
+void vtkPGISurfaceRepresentation::SetCombineWithVTKLighting(bool on)
+{
+  GIMapper(this->Mapper)->SetCombineWithVTKLighting(on);
+  GIMapper(this->LODMapper)->SetCombineWithVTKLighting(on);
+}
+
+void vtkPGISurfaceRepresentation::SetAlwaysRecompute(bool on)
+{
+  GIMapper(this->Mapper)->SetAlwaysRecompute(on);
+  GIMapper(this->LODMapper)->SetAlwaysRecompute(on);
+}
+
+void vtkPGISurfaceRepresentation::AddBlockerPlane(
+  double ox, double oy, double oz, double nx, double ny, double nz, double ar, double ag, double ab)
+{
+  const double origin[3] = { ox, oy, oz }, normal[3] = { nx, ny, nz }, albedo[3] = { ar, ag, ab };
+  GIMapper(this->Mapper)->AddBlockerPlane(origin, normal, albedo);
+  GIMapper(this->LODMapper)->AddBlockerPlane(origin, normal, albedo);
+}
+
+void vtkPGISurfaceRepresentation::RemoveAllBlockerPlanes()
+{
+  GIMapper(this->Mapper)->RemoveAllBlockerPlanes();
+  GIMapper(this->LODMapper)->RemoveAllBlockerPlanes();
+}
+
+vtkPolyData* vtkPGISurfaceRepresentation::GetProxies()
+{
+  return this->Proxies;
+}
+
+const char* vtkPGISurfaceRepresentation::GetGIStatus()
+{
+  this->GIStatus = GIMapper(this->Mapper)->GetGIStatus();
+  return this->GIStatus.c_str();
+}
+
+int vtkPGISurfaceRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestData(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  vtkPolyData* connected = inputVector[1]->GetNumberOfInformationObjects() > 0
+    ? vtkPolyData::GetData(inputVector[1], 0)
+    : nullptr;
+  if (connected)
+  {
+    this->Proxies = vtkSmartPointer<vtkPolyData>::New();
+    this->Proxies->ShallowCopy(connected);
+  }
+  else
+  {
+    // ParaView marks a representation modified on any property change:
+    // fit again only when the data or the sphere count changed.
+    vtkDataObject* input = inputVector[0]->GetNumberOfInformationObjects() > 0
+      ? vtkDataObject::GetData(inputVector[0], 0)
+      : nullptr;
+    const vtkMTimeType inputTime = input ? input->GetMTime() : 0;
+    if (input != this->FittedInput || inputTime != this->FittedTime ||
+      this->NumberOfAutomaticProxies != this->FittedCount || this->FittedConnected)
+    {
+      this->FitAutomaticProxies();
+      this->FittedInput = input;
+      this->FittedTime = inputTime;
+      this->FittedCount = this->NumberOfAutomaticProxies;
+    }
+  }
+  this->FittedConnected = connected != nullptr;
+  return 1;
+}
+
+void vtkPGISurfaceRepresentation::FitAutomaticProxies()
+{
+  vtkDataObject* surface = this->MultiBlockMaker->GetOutputDataObject(0);
+  std::vector<vtkPolyData*> pieces;
+  if (auto* composite = vtkCompositeDataSet::SafeDownCast(surface))
+  {
+    for (vtkDataSet* block : vtkCompositeDataSet::GetDataSets(composite))
+    {
+      auto* polydata = vtkPolyData::SafeDownCast(block);
+      if (polydata && polydata->GetNumberOfPolys() > 0)
+      {
+        pieces.push_back(polydata);
+      }
+    }
+  }
+  else if (auto* polydata = vtkPolyData::SafeDownCast(surface))
+  {
+    pieces.push_back(polydata);
+  }
+  this->Proxies = vtkSmartPointer<vtkPolyData>::New();
+  if (this->NumberOfAutomaticProxies == 0 || pieces.empty())
+  {
+    return;
+  }
+  vtkNew<vtkAppendPolyData> append;
+  for (vtkPolyData* piece : pieces)
+  {
+    // Positions and cells only: the blocks' arrays need not match.
+    auto bare = vtkSmartPointer<vtkPolyData>::New();
+    bare->SetPoints(piece->GetPoints());
+    bare->SetPolys(piece->GetPolys());
+    append->AddInputData(bare);
+  }
+  vtkNew<vtkPGISphereSetApproximation> fit;
+  fit->SetInputConnection(append->GetOutputPort());
+  fit->SetMethodToKMeans();
+  fit->SetNumberOfSpheres(this->NumberOfAutomaticProxies);
+  fit->SetSeed(1);
+  fit->Update();
+  this->Proxies->ShallowCopy(fit->GetOutput());
+}
+
+int vtkPGISurfaceRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request_type, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request_type == vtkPVView::REQUEST_UPDATE())
+  {
+    // The proxies travel to the rendering processes as a second piece.
+    vtkPVView::SetPiece(inInfo, this, this->Proxies, 0, 1);
+  }
+  else if (request_type == vtkPVView::REQUEST_RENDER())
+  {
+    auto* proxies = vtkPolyData::SafeDownCast(vtkPVView::GetDeliveredPiece(inInfo, this, 1));
+    GIMapper(this->Mapper)->SetProxies(proxies);
+    GIMapper(this->LODMapper)->SetProxies(proxies);
+  }
+  return 1;
+}
+
+void vtkPGISurfaceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfAutomaticProxies: " << this->NumberOfAutomaticProxies << "\n";
+  os << indent << "Proxies: " << this->Proxies->GetNumberOfPoints() << " spheres\n";
+  os << indent << "GIStatus: " << this->GetGIStatus() << "\n";
+}
