@@ -68,6 +68,7 @@ public:
   /// Convenience: the scene objects and proxies ports.
   void AddSceneObjectConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(1, output); }
   void AddSceneObjectData(vtkDataObject* data) { this->AddInputData(1, data); }
+  void RemoveAllSceneObjects() { this->SetInputConnection(1, nullptr); }
   void SetProxiesConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(2, output); }
   void SetProxiesData(vtkDataObject* data) { this->SetInputData(2, data); }
 

@@ -13,6 +13,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
 #include <vector>
 
 vtkStandardNewMacro(vtkPGISurfaceRepresentation);
@@ -157,21 +158,34 @@ int vtkPGISurfaceRepresentation::RequestData(
 void vtkPGISurfaceRepresentation::FitAutomaticProxies()
 {
   vtkDataObject* surface = this->MultiBlockMaker->GetOutputDataObject(0);
-  std::vector<vtkPolyData*> pieces;
+  std::vector<vtkPolyData*> blocks, pieces;
   if (auto* composite = vtkCompositeDataSet::SafeDownCast(surface))
   {
     for (vtkDataSet* block : vtkCompositeDataSet::GetDataSets(composite))
     {
-      auto* polydata = vtkPolyData::SafeDownCast(block);
-      if (polydata && polydata->GetNumberOfPolys() > 0)
+      if (auto* polydata = vtkPolyData::SafeDownCast(block))
       {
-        pieces.push_back(polydata);
+        blocks.push_back(polydata);
       }
     }
   }
   else if (auto* polydata = vtkPolyData::SafeDownCast(surface))
   {
-    pieces.push_back(polydata);
+    blocks.push_back(polydata);
+  }
+  for (vtkPolyData* block : blocks)
+  {
+    // A flat block (a ground, a slice) bounds no volume: spheres fitted to
+    // it would be blobs of shadow on it. It receives light but casts none.
+    double b[6];
+    block->GetBounds(b);
+    const double extent[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
+    const double largest = std::max({ extent[0], extent[1], extent[2] });
+    const double thinnest = std::min({ extent[0], extent[1], extent[2] });
+    if (block->GetNumberOfPolys() > 0 && largest > 0.0 && thinnest > 0.01 * largest)
+    {
+      pieces.push_back(block);
+    }
   }
   this->Proxies = vtkSmartPointer<vtkPolyData>::New();
   if (this->NumberOfAutomaticProxies == 0 || pieces.empty())

@@ -9,7 +9,9 @@
  * example the Sphere Proxies filter), delivered to the rendering processes
  * with the geometry; without them the representation bounds the surface it
  * draws with NumberOfAutomaticProxies spheres itself (k-means, fast and less
- * tight than the variational Sphere Proxies; 0: no proxies, no shadows).
+ * tight than the variational Sphere Proxies; 0: no proxies, no shadows),
+ * leaving out flat blocks (thinnest extent under 1% of the largest: grounds,
+ * slices), which receive light but bound no volume.
  * The GI knobs (SetSettings) and the light (SetLighting) are shared by the
  * full-resolution and the LOD mapper. GI is recomputed when the geometry,
  * the proxies, the light or a knob change; camera moves only re-render.
