@@ -50,31 +50,16 @@ start = time.perf_counter()
 LoadPlugin(plugin, remote=False, ns=globals())
 print("plugin load time: %.3f s" % (time.perf_counter() - start))
 
-# The scene: the bunny standing on z = 0 (as the default scene places it)
-# and a ground, grouped; 32 k-means proxies of the bunny.
-bunny = ProxyGIOFFReader(FileName=mesh)
-placed = Transform(Input=bunny)
-placed.Transform.Rotate = [90, 0, 0]
-placed.Transform.Translate = [0, 0, 0.494]
-ground = Plane(Origin=[-1.5, -1.5, 0], Point1=[1.5, -1.5, 0], Point2=[-1.5, 1.5, 0],
-               XResolution=48, YResolution=48)
-scene = GroupDatasets(Input=[placed, ground])
-proxies = SphereProxies(Input=placed, NumberOfSpheres=32, Method="KMeans")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import proxygi_scene
 
+bunny, ground, scene, proxies = proxygi_scene.build(globals(), mesh)
 view = CreateView("RenderView")
-view.ViewSize = [320, 240]
-view.OrientationAxesVisibility = 0
-view.UseColorPaletteForBackground = 0
-view.Background = [0.0, 0.0, 0.0]
-
 display = Show(scene, view)
 # After Show (the first Show resets the camera), and the first Render must
 # not reset it either.
 paraview.simple._DisableFirstRenderCameraReset()
-view.CameraPosition = [2.1, -2.5, 1.4]
-view.CameraFocalPoint = [0.0, 0.0, 0.3]
-view.CameraViewUp = [0.0, 0.0, 1.0]
-view.CameraViewAngle = 30
+proxygi_scene.frame(view)
 check("ProxyGI Surface" in display.GetProperty("Representation").Available,
       "ProxyGI Surface is offered for the multiblock")
 display.SetRepresentationType("ProxyGI Surface")

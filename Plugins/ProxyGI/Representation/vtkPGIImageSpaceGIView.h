@@ -1,0 +1,59 @@
+/**
+ * @class   vtkPGIImageSpaceGIView
+ * @brief   ParaView's render view with vtkPGIImageSpaceGIPass as its render
+ *          pass: image-space soft shadows and one-bounce light from sphere
+ *          proxies on every opaque surface the view draws.
+ *
+ * As ParaView's vtkPVRenderViewWithEDL installs its pass, this view installs
+ * the image-space GI pass on its synchronized renderers (each rank's pass
+ * sees that rank's geometry). The proxies come from a pipeline source
+ * (SetProxiesAlgorithm, e.g. Sphere Proxies) on the processes that render
+ * (builtin sessions, pvbatch, a pvserver whose data and render servers are
+ * one). The pass's knobs are forwarded; GetPass gives the pass itself.
+ */
+#ifndef vtkPGIImageSpaceGIView_h
+#define vtkPGIImageSpaceGIView_h
+
+#include "ProxyGIParaViewRepresentationModule.h"
+#include "vtkPVRenderView.h"
+
+#include <string>
+
+class vtkAlgorithm;
+class vtkPGIGISettings;
+class vtkPGIImageSpaceGIPass;
+class vtkPGILighting;
+
+class PROXYGIPARAVIEWREPRESENTATION_EXPORT vtkPGIImageSpaceGIView : public vtkPVRenderView
+{
+public:
+  static vtkPGIImageSpaceGIView* New();
+  vtkTypeMacro(vtkPGIImageSpaceGIView, vtkPVRenderView);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The proxies' source (its first output); null: no proxies.
+  void SetProxiesAlgorithm(vtkAlgorithm* source);
+  void SetSettings(vtkPGIGISettings* settings);
+  void SetLighting(vtkPGILighting* lighting);
+  void SetReceiverScale(int scale);
+  void SetUpsampling(int upsampling);
+  void SetExpansionFactor(double factor);
+  void SetExposure(double exposure);
+  /// What the last frame's pass ran and why.
+  const char* GetGIStatus();
+
+  vtkPGIImageSpaceGIPass* GetPass() { return this->Pass; }
+
+protected:
+  vtkPGIImageSpaceGIView();
+  ~vtkPGIImageSpaceGIView() override;
+
+  vtkPGIImageSpaceGIPass* Pass;
+  std::string GIStatus;
+
+private:
+  vtkPGIImageSpaceGIView(const vtkPGIImageSpaceGIView&) = delete;
+  void operator=(const vtkPGIImageSpaceGIView&) = delete;
+};
+
+#endif
