@@ -10,6 +10,8 @@
 #   recompute ProxyGI Surface with GIAlwaysRecompute: the GI pass every frame
 #   moving    ProxyGI Surface with the proxies moved every frame: pipeline,
 #             delivery, bake and GI pass every frame
+#   imagespace the image-space GI view (its passes run every frame), receiver
+#             buffer at 1/2 and 1/4 of the view
 import os
 import statistics
 import sys
@@ -30,34 +32,27 @@ LoadPlugin(plugin, remote=False, ns=globals())
 load = time.perf_counter() - start
 paraview.simple._DisableFirstRenderCameraReset()
 
-bunny = ProxyGIOFFReader(FileName=mesh)
-placed = Transform(Input=bunny)
-placed.Transform.Rotate = [90, 0, 0]
-placed.Transform.Translate = [0, 0, 0.494]
-ground = Plane(Origin=[-1.5, -1.5, 0], Point1=[1.5, -1.5, 0], Point2=[-1.5, 1.5, 0],
-               XResolution=48, YResolution=48)
-scene = GroupDatasets(Input=[placed, ground])
-proxies = SphereProxies(Input=placed, NumberOfSpheres=32, Method="KMeans")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Testing", "ParaView"))
+import proxygi_scene
+
+bunny, ground, scene, proxies = proxygi_scene.build(globals(), mesh)
 moved = Transform(Input=proxies)
 
 view = CreateView("RenderView")
-view.ViewSize = [size, size]
-view.OrientationAxesVisibility = 0
 display = Show(scene, view)
-view.CameraPosition = [2.1, -2.5, 1.4]
-view.CameraFocalPoint = [0.0, 0.0, 0.3]
-view.CameraViewUp = [0.0, 0.0, 1.0]
+proxygi_scene.frame(view, [size, size])
 
 
-def orbit(step=None):
-    camera = GetActiveCamera()
+def orbit(step=None, on=None):
+    on = on or view
+    camera = on.GetActiveCamera()
     times = []
     for k in range(frames):
         camera.Azimuth(360.0 / frames)
         if step:
             step(k)
         start = time.perf_counter()
-        Render(view)
+        Render(on)
         times.append(time.perf_counter() - start)
     return statistics.median(times)
 
@@ -93,6 +88,22 @@ def move(k):
 
 Render(view)
 results.append(("moving", "ProxyGI Surface, proxies moved every frame", orbit(move)))
+
+# The image-space view: its passes run every frame by design.
+Hide(scene, view)
+spaced = CreateView("ProxyGIImageSpaceRenderView")
+for source in (bunny, ground):
+    Show(source, spaced)
+proxygi_scene.frame(spaced, [size, size])
+spaced.GIProxies = proxies
+spaced.GIEnvironmentFileName = environment
+spaced.GIExposure = 0.5
+Render(spaced)
+orbit(on=spaced)
+results.append(("imagespace", "image-space GI view (receivers 1/2)", orbit(on=spaced)))
+spaced.GIReceiverScale = 4
+Render(spaced)
+results.append(("imagespace4", "image-space GI view (receivers 1/4)", orbit(on=spaced)))
 
 surface = results[0][2]
 lines = ["| mode | median frame time (ms) | ratio to Surface |", "|---|---|---|"]
