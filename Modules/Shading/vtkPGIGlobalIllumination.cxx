@@ -7,6 +7,7 @@
 #include "pgiSHLightTables.h"
 #include "pgiSHSphericalLight.h"
 #include "pgiSHZonal.h"
+#include "pgiSRGB.h"
 #include "pgiSoftShadows.h"
 #include "pgiSphereTree.h"
 #include "pgiSphericalLights.h"
@@ -26,6 +27,7 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <array>
@@ -179,6 +181,7 @@ void vtkPGIGlobalIllumination::PrintSelf(ostream& os, vtkIndent indent)
   this->Settings->PrintSelf(os, indent.GetNextIndent());
   os << indent << "BlockerPlanes: " << this->Bake->GetNumberOfBlockerPlanes() << "\n";
   os << indent << "Bake builds: " << this->Bake->GetNumberOfBuilds() << "\n";
+  os << indent << "ColorExposure: " << this->ColorExposure << "\n";
 }
 
 int vtkPGIGlobalIllumination::FillInputPortInformation(int port, vtkInformation* info)
@@ -552,6 +555,25 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   output->GetPointData()->AddArray(indirectShadowed);
   output->GetPointData()->AddArray(local);
   output->GetPointData()->AddArray(total);
+  // The picture the GPU paths draw, for colouring with Map Scalars off.
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("RadianceSRGB");
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(n);
+  const double exposure = this->ColorExposure;
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType first, vtkIdType last)
+    {
+      for (vtkIdType i = first; i < last; ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          colors->SetTypedComponent(
+            i, c, proxygi::ToSRGB8(exposure * total->GetTypedComponent(i, c)));
+        }
+      }
+    });
+  output->GetPointData()->AddArray(colors);
   output->GetPointData()->AddArray(visibility);
   if (!receivers->GetPointData()->GetNormals())
   {

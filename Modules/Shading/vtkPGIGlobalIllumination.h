@@ -17,7 +17,9 @@
  * (unshadowed, Sloan 2007) | | IndirectShadowed | 3 | one bounce from the proxies as spherical
  * lights, shadowed on both legs (Guerrero 2008) | | LocalLights | 3 | spherical and point lights of
  * the vtkPGILighting, shadowed by the same visibility | | Radiance | 3 | the sum of the effects
- * that ran | | Visibility | n^2 | the SH visibility vector (relight without recomputing) | and a
+ * that ran | | Visibility | n^2 | the SH visibility vector (relight without recomputing) | |
+ * RadianceSRGB | 3 (bytes) | ColorExposure x Radiance encoded sRGB: the picture the GPU
+ * paths draw (in ParaView: colour by it with Map Scalars off) | and a
  * field-data string array "Plan": which effects ran and why.
  *
  * The knobs are a vtkPGIGISettings (GetSettings; SetSettings shares one
@@ -94,6 +96,10 @@ public:
     double ag, double ab);
   void RemoveAllBlockerPlanes();
 
+  /// Scale of the radiance in the RadianceSRGB colours (default 1).
+  vtkSetClampMacro(ColorExposure, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ColorExposure, double);
+
   /// The plan of the last execution, one line per decision.
   const std::vector<std::string>& GetPlan() const { return this->Plan; }
 
@@ -119,6 +125,7 @@ protected:
   struct Clusters;
   std::unique_ptr<Clusters> ReceiverClusters;
   std::vector<std::string> Plan;
+  double ColorExposure = 1.0;
 
 private:
   vtkPGIGlobalIllumination(const vtkPGIGlobalIllumination&) = delete;

@@ -2,7 +2,9 @@
 # through paraview.simple against the C++ classes' results on the same
 # inputs (the proxygi program's sphere set of the same mesh, count, method
 # and seed), and bad input that must leave a message and no crash.
-#   pvbatch plugin_filters.py PLUGIN PROXYGI MESH.off IMAGE.exr WORKDIR
+#   pvbatch plugin_filters.py PLUGIN PROXYGI MESH.off IMAGE.exr WORKDIR [PYTHONDIR]
+# With PYTHONDIR (the proxygi Python package), Reference Illumination is
+# checked against vtkPGIReferenceIllumination called directly.
 import os
 import subprocess
 import sys
@@ -11,6 +13,7 @@ from paraview import servermanager
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 
 plugin, proxygi, mesh, image, work = sys.argv[1:6]
+pythondir = sys.argv[6] if len(sys.argv) > 6 else None
 os.makedirs(work, exist_ok=True)
 reference = os.path.join(work, "bunny-16-kmeans.vtp")
 # The C++ classes' answer: the proxygi program on the same mesh and knobs.
@@ -127,6 +130,30 @@ gi.UpdatePipeline()
 lit = servermanager.Fetch(gi).GetPointData().GetArray("Radiance").GetRange(0)
 check(lit[1] > 0.0 and lit[1] != shaded3.GetPointData().GetArray("Radiance").GetRange(0)[1],
       "the environment file lights the bunny (red up to %.3g)" % lit[1])
+
+# Reference Illumination: the Embree ground truth, 8 paths per vertex, the
+# same seed as the class called directly on the same receivers.
+reference_filter = ReferenceIllumination(Input=bunny, Samples=8, MaxBounces=1)
+check(reference_filter.Samples == 8 and reference_filter.Seed == 1 and reference_filter.UseProxies == 0,
+      "Reference Illumination's properties (Samples, Seed 1, UseProxies off)")
+reference_filter.UpdatePipeline()
+traced = servermanager.Fetch(reference_filter)
+samples = traced.GetFieldData().GetArray("Samples")
+check(traced.GetPointData().GetArray("Radiance") is not None and samples is not None
+      and samples.GetTuple1(0) == 8, "Reference Illumination traced 8 samples per vertex")
+if pythondir:
+    sys.path.insert(0, pythondir)
+    import proxygi as pgi
+    direct = pgi.vtkPGIReferenceIllumination()
+    direct.SetInputData(servermanager.Fetch(bunny))
+    direct.SetSamples(8)
+    direct.Update()
+    a = traced.GetPointData().GetArray("Radiance")
+    b = direct.GetOutput().GetPointData().GetArray("Radiance")
+    worst = max(abs(a.GetValue(i) - b.GetValue(i)) for i in range(a.GetNumberOfValues())) \
+        if a.GetNumberOfValues() == b.GetNumberOfValues() else float("inf")
+    check(worst <= 1e-6, "Reference Illumination equals vtkPGIReferenceIllumination within 1e-6 "
+          "(largest difference %.3g)" % worst)
 
 # Bad input: a missing file, zero spheres. Messages, no crash, the session goes on.
 missing = ProxyGIOFFReader(FileName="/nonexistent/mesh.off")

@@ -3,7 +3,7 @@
 # the forest map as light: the screenshot against the committed baseline
 # (VTK's regression tester), the representation's per-vertex radiance and
 # picture against the C++ classes (proxygi Python package) on the same
-# inputs, caching (a camera move reuses the GI, new proxies recompute it),
+# inputs, the Global Illumination filter's picture of the same scene, caching (a camera move reuses the GI, new proxies recompute it),
 # and bad input (missing .exr, NaN proxies, no proxies) that must leave a
 # message and the session going.
 #   pvbatch representation.py PLUGIN PYTHONDIR MESH.off ENV.exr BASELINE.png WORKDIR
@@ -22,6 +22,8 @@ from vtkmodules.vtkCommonCore import vtkCommand, vtkFloatArray, vtkOutputWindow
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkRenderingCore import vtkActor
 from vtkmodules.vtkTestingRendering import vtkTesting
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
 import proxygi
 
 failures = []
@@ -31,6 +33,13 @@ def check(ok, what):
     print(("ok    " if ok else "FAIL  ") + what)
     if not ok:
         failures.append(what)
+
+
+def pixels(path):
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(float)
 
 
 # Every error and warning, to check that bad input is said.
@@ -62,6 +71,14 @@ paraview.simple._DisableFirstRenderCameraReset()
 proxygi_scene.frame(view)
 check("ProxyGI Surface" in display.GetProperty("Representation").Available,
       "ProxyGI Surface is offered for the multiblock")
+# Offered for the other geometry representations too (image, unstructured).
+for what, other in (("an image", OpenDataFile(environment)),
+                    ("an unstructured grid", Clip(Input=bunny))):
+    other_display = Show(other, view)
+    check("ProxyGI Surface" in other_display.GetProperty("Representation").Available,
+          "ProxyGI Surface is offered for %s (%s)" % (what, other.GetDataInformation().GetDataSetTypeAsString()))
+    Hide(other, view)
+    Delete(other)
 display.SetRepresentationType("ProxyGI Surface")
 display.GIProxies = proxies
 display.GIEnvironmentFileName = environment
@@ -97,6 +114,15 @@ Render(view)
 check(mapper.GetNumberOfGIUpdates() == updates, "a camera move reuses the GI (%d passes)" % updates)
 camera.Azimuth(-20)
 Render(view)
+# A knob and the light recompute it.
+for prop, value, back, said in (("GIOrder", 3, 4, "order 3"), ("GIEnvironmentScale", 2.0, 1.0, "scene")):
+    updates = mapper.GetNumberOfGIUpdates()
+    setattr(display, prop, value)
+    Render(view)
+    check(mapper.GetNumberOfGIUpdates() > updates and said in mapper.GetGIStatus(),
+          "%s = %s recomputes the GI (%s)" % (prop, value, mapper.GetGIStatus().split(" | ")[0]))
+    setattr(display, prop, back)
+    Render(view)
 
 # The C++ classes on the same inputs: the blocks the representation drew,
 # its proxies and the forest map, through vtkPGIGIPolyDataMapper (one
@@ -155,6 +181,31 @@ for actor in actors:
 del plain, actors, actor, one
 Show(scene, view)
 Render(view)
+
+# The CPU filter on the same scene: Global Illumination on each block with
+# the same proxies and light, coloured by its RadianceSRGB bytes (Map Scalars
+# off) in a view of the same camera: the picture the representation drew.
+cpu_view = CreateView("RenderView")
+shaded = []
+for block in (bunny, ground):
+    lit = GlobalIllumination(Input=block, Proxies=proxies, EnvironmentFileName=environment,
+                             ColorExposure=0.5)
+    shown = Show(lit, cpu_view)
+    ColorBy(shown, ("POINTS", "RadianceSRGB"))
+    shown.MapScalars = 0
+    shown.Ambient, shown.Diffuse = 1.0, 0.0  # the colours as they are, unlit
+    shaded.append(lit)
+proxygi_scene.frame(cpu_view)
+Render(cpu_view)
+cpu_picture = os.path.join(work, "GlobalIllumination-filter.png")
+SaveScreenshot(cpu_picture, cpu_view, ImageResolution=proxygi_scene.SIZE)
+difference = abs(pixels(cpu_picture) - pixels(screenshot))
+check(difference.mean() < 1.0,
+      "the Global Illumination filter's picture against the representation's: mean difference "
+      "%.3f of 255 (largest %d)" % (difference.mean(), difference.max()))
+Delete(cpu_view)
+del cpu_view
+SetActiveView(view)
 
 # New proxies recompute the GI; no proxies and no automatic ones: no shadows.
 updates = mapper.GetNumberOfGIUpdates()

@@ -11,10 +11,12 @@
 #include "pgiHardScenes.h"
 #include "pgiTesting.h"
 
+#include "pgiSRGB.h"
 #include "vtkCallbackCommand.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <cstdio>
 
@@ -218,6 +220,27 @@ int TestGlobalIlluminationPlan(int, char*[])
       difference, peak);
     PGI_CHECK(difference > 0.0);
     PGI_BELOW(difference, 1e-5 * peak);
+
+    // RadianceSRGB: the display bytes of ColorExposure x Radiance (pgiSRGB.h).
+    fast->SetColorExposure(0.5);
+    fast->Update();
+    vtkDataArray* radiance = fast->GetOutput()->GetPointData()->GetArray("Radiance");
+    auto* colors = vtkUnsignedCharArray::SafeDownCast(
+      fast->GetOutput()->GetPointData()->GetArray("RadianceSRGB"));
+    PGI_CHECK(colors && colors->GetNumberOfComponents() == 3 &&
+      colors->GetNumberOfTuples() == radiance->GetNumberOfTuples());
+    int wrong = 0;
+    for (vtkIdType i = 0; colors && i < colors->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        wrong +=
+          colors->GetTypedComponent(i, c) != proxygi::ToSRGB8(0.5 * radiance->GetComponent(i, c));
+      }
+    }
+    std::printf("RadianceSRGB at ColorExposure 0.5: %d of %lld bytes differ from ToSRGB8\n", wrong,
+      static_cast<long long>(colors ? 3 * colors->GetNumberOfTuples() : 0));
+    PGI_CHECK(wrong == 0);
   }
   return pgitest::Result();
 }
