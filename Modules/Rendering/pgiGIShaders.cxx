@@ -129,6 +129,22 @@ void UploadProxyAlbedos(vtkOpenGLRenderWindow* window, const Blockers& blockers,
   texture = FloatTexture(window, width, rows, 4, texels);
 }
 
+vtkPGIGISettings::Support KernelSupport(const char* backend, int maxOrder)
+{
+  vtkPGIGISettings::Support s;
+  s.Backend = backend;
+  s.MinOrder = MinOrder;
+  s.MaxOrder = maxOrder;
+  s.ExpMethods = 1u << vtkPGIGISettings::EXP_HYB;
+  s.ExpDegree = false;
+  s.AccumulationOrder = false;
+  s.WindowSize = false;
+  s.ShadingPaths = 1u << vtkPGIGISettings::SHADING_PRODUCT_MATRIX;
+  s.Hierarchy = false;
+  s.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
+  return s;
+}
+
 KernelSettings KernelSettingsOf(vtkPGIGISettings* settings)
 {
   KernelSettings k;

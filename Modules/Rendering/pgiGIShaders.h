@@ -35,6 +35,7 @@
 
 #include "ProxyGIRenderingModule.h"
 
+#include "vtkPGIGISettings.h" // for Support
 #include "vtkSmartPointer.h"
 
 #include <functional>
@@ -43,7 +44,6 @@
 #include <vector>
 
 class vtkOpenGLRenderWindow;
-class vtkPGIGISettings;
 class vtkPolyData;
 class vtkShaderProgram;
 class vtkTextureObject;
@@ -106,6 +106,14 @@ struct KernelSettings
 
 /// The kernel's uniforms from (effective) settings: one fill for both GPU consumers.
 PROXYGIRENDERING_EXPORT KernelSettings KernelSettingsOf(vtkPGIGISettings* settings);
+
+/**
+ * What the GPU kernels (pgiGILibrary.glsl) honour, for a GPU backend's
+ * vtkPGIGISettings::Support: orders MinOrder..maxOrder, HYB only, the
+ * product-matrix path, no accumulation order, windowing or hierarchy cuts,
+ * the averaged indirect operator. Backends narrow it further.
+ */
+PROXYGIRENDERING_EXPORT vtkPGIGISettings::Support KernelSupport(const char* backend, int maxOrder);
 
 /**
  * Tables, light and blockers on the GPU for one order: the cap log-visibility,

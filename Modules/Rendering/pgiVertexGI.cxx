@@ -176,21 +176,7 @@ vtkPolyData* MapperScene::ProxiesOf(vtkAlgorithm* mapper)
 
 const vtkPGIGISettings::Support& MapperScene::Support()
 {
-  static const vtkPGIGISettings::Support support = []
-  {
-    vtkPGIGISettings::Support s;
-    s.Backend = "GPU mapper";
-    s.MinOrder = MinOrder;
-    s.MaxOrder = MaxOrder;
-    s.ExpMethods = 1u << vtkPGIGISettings::EXP_HYB;
-    s.ExpDegree = false;
-    s.AccumulationOrder = false;
-    s.WindowSize = false;
-    s.ShadingPaths = 1u << vtkPGIGISettings::SHADING_PRODUCT_MATRIX;
-    s.Hierarchy = false;
-    s.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
-    return s;
-  }();
+  static const vtkPGIGISettings::Support support = KernelSupport("GPU mapper", MaxOrder);
   return support;
 }
 

@@ -1,5 +1,8 @@
 #include "vtkPGIGICompositePolyDataMapper.h"
 
+// VTK 9.1's vtkCompositeMapperHelper2.h uses GLenum without including it.
+#include "vtk_glew.h"
+
 #include "vtkCompositeMapperHelper2.h"
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"

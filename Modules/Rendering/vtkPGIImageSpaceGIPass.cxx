@@ -296,18 +296,9 @@ const vtkPGIGISettings::Support& vtkPGIImageSpaceGIPass::GetSupport()
 {
   static const vtkPGIGISettings::Support support = []
   {
-    vtkPGIGISettings::Support s;
-    s.Backend = "image-space pass";
-    s.MinOrder = 2;
-    s.MaxOrder = MaxTargets * 4 >= 16 ? 4 : 2;
-    s.ExpMethods = 1u << vtkPGIGISettings::EXP_HYB;
-    s.ExpDegree = false;
-    s.AccumulationOrder = false;
-    s.WindowSize = false;
-    s.ShadingPaths = 1u << vtkPGIGISettings::SHADING_PRODUCT_MATRIX;
-    s.Hierarchy = false;
+    vtkPGIGISettings::Support s =
+      proxygi::gpu::KernelSupport("image-space pass", MaxTargets * 4 >= 16 ? 4 : 2);
     s.IndirectModes = 1u << vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
-    s.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
     s.SphericalLightBlocking = false;
     s.PlaneBounceShadows = false;
     s.PlaneBlockings = 1u << vtkPGIGISettings::PLANES_IN_LOG_SPACE;

@@ -12,30 +12,13 @@ import time
 
 plugin, mesh, environment, baseline, per_vertex, work = [os.path.abspath(a) for a in sys.argv[1:7]]
 os.makedirs(work, exist_ok=True)
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import paraview.simple
 from paraview.simple import *
-from vtkmodules.vtkIOImage import vtkPNGReader
-from vtkmodules.vtkTestingRendering import vtkTesting
-from vtkmodules.util.numpy_support import vtk_to_numpy
 import proxygi_scene
-
-failures = []
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what)
-    if not ok:
-        failures.append(what)
-
-
-def pixels(path):
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(float)
-
+from proxygi_scene import check, finish, pixels
+from vtkmodules.vtkTestingRendering import vtkTesting
 
 start = time.perf_counter()
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -82,8 +65,4 @@ view.UpdatePropertyInformation()
 status = view.GetPropertyValue("GIStatus")
 check("0 proxies" in status, "no proxies: " + status)
 
-print("%d failed" % len(failures))
-# No sys.exit(0): pvbatch exited that way after rendering tears its X
-# context down twice (GLXBadContext, exit status 1).
-if failures:
-    sys.exit(1)
+finish()

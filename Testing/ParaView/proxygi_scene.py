@@ -1,7 +1,12 @@
 """The ParaView tests' and benchmarks' scene: the bunny standing on z = 0 (as
 the default scene places it) on a 2,401-vertex ground, 32 k-means Sphere
-Proxies of the bunny, and the camera the baselines were taken with."""
+Proxies of the bunny, and the camera the baselines were taken with; and the
+tests' checks (check, pixels, finish)."""
+import sys
+
 from paraview.simple import GroupDatasets, Plane, Transform
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
 
 SIZE = [320, 240]
 
@@ -29,3 +34,30 @@ def frame(view, size=SIZE):
     view.CameraFocalPoint = [0.0, 0.0, 0.3]
     view.CameraViewUp = [0.0, 0.0, 1.0]
     view.CameraViewAngle = 30
+
+
+failures = []
+
+
+def check(ok, what):
+    """One line per check: 'ok' or 'FAIL' (the tests' FAIL pattern)."""
+    print(("ok    " if ok else "FAIL  ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def pixels(path):
+    """A PNG's RGB values as an N x 3 float array."""
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(float)
+
+
+def finish():
+    """Prints the tests' PASS line; exits 1 on failures. No sys.exit(0): pvbatch
+    exited that way after rendering tears its X context down twice
+    (GLXBadContext, exit status 1)."""
+    print("%d failed" % len(failures))
+    if failures:
+        sys.exit(1)
