@@ -35,7 +35,9 @@ paraview.simple._DisableFirstRenderCameraReset()
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Testing", "ParaView"))
 import proxygi_scene
 
-bunny, ground, scene, proxies = proxygi_scene.build(globals(), mesh)
+# Another mesh than the bunny is placed by its bounds (largest extent 1).
+bunny, ground, scene, proxies = proxygi_scene.build(
+    globals(), mesh, fit=os.path.basename(mesh) != "bunny00.off")
 moved = Transform(Input=proxies)
 
 view = CreateView("RenderView")
@@ -110,6 +112,9 @@ lines = ["| mode | median frame time (ms) | ratio to Surface |", "|---|---|---|"
 for key, what, t in results:
     lines.append("| %s | %.1f | %.2f |" % (what, 1000 * t, t / surface))
 info = [
+    "mesh %s: %d vertices and a %d-vertex ground, environment %s" % (
+        os.path.basename(mesh), bunny.GetDataInformation().GetNumberOfPoints(),
+        ground.GetDataInformation().GetNumberOfPoints(), os.path.basename(environment)),
     "plugin load time: %.3f s" % load,
     "first ProxyGI frame (bake and GI pass): %.2f s" % first,
     "GI passes while orbiting cached: %d over %d frames" % (cached_passes, frames),

@@ -11,12 +11,24 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 SIZE = [320, 240]
 
 
-def build(plugin, mesh):
+def build(plugin, mesh, fit=False):
     """Returns (bunny, ground, scene, proxies); scene groups bunny and ground.
-    plugin: the namespace LoadPlugin filled (its readers and filters)."""
-    bunny = Transform(Input=plugin["ProxyGIOFFReader"](FileName=mesh))
-    bunny.Transform.Rotate = [90, 0, 0]
-    bunny.Transform.Translate = [0, 0, 0.494]
+    plugin: the namespace LoadPlugin filled (its readers and filters).
+    fit: place any mesh instead (as it is oriented, largest extent 1, centred
+    above the origin, bottom on z = 0); the baselines use the bunny's own
+    placement."""
+    reader = plugin["ProxyGIOFFReader"](FileName=mesh)
+    bunny = Transform(Input=reader)
+    if fit:
+        reader.UpdatePipeline()
+        b = reader.GetDataInformation().GetBounds()
+        scale = 1.0 / max(b[1] - b[0], b[3] - b[2], b[5] - b[4])
+        bunny.Transform.Scale = [scale] * 3
+        bunny.Transform.Translate = [-0.5 * (b[0] + b[1]) * scale, -0.5 * (b[2] + b[3]) * scale,
+                                     -b[4] * scale]
+    else:
+        bunny.Transform.Rotate = [90, 0, 0]
+        bunny.Transform.Translate = [0, 0, 0.494]
     ground = Plane(Origin=[-1.5, -1.5, 0], Point1=[1.5, -1.5, 0], Point2=[-1.5, 1.5, 0],
                    XResolution=48, YResolution=48)
     scene = GroupDatasets(Input=[bunny, ground])
