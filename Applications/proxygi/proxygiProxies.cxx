@@ -1,6 +1,7 @@
 // proxygi proxies: the bounding sphere proxies of a mesh, written as .vtp,
 // with their outside-volume ratio E and the time the build took.
 #include "proxygiCommands.h"
+#include "proxygiProgress.h"
 
 #include "vtkPGIOFFReader.h"
 #include "vtkPGISphereHierarchy.h"
@@ -164,6 +165,10 @@ int RunProxies(const Args& args)
     stem = stem.substr(0, stem.find_last_of('.'));
     output = stem + "-proxies.vtp";
   }
+  if (!HasExtension("proxies", "-o", output, { ".vtp" }))
+  {
+    return 2;
+  }
 
   vtkNew<Reporter> reporter;
   vtkSmartPointer<vtkAlgorithm> reader;
@@ -205,7 +210,16 @@ int RunProxies(const Args& args)
   approx->SetMetricResolution(static_cast<int>(resolution));
   approx->SetSplitConnectedComponents(Flag(args, "--components"));
   const auto start = std::chrono::steady_clock::now();
-  approx->Update();
+  bool interrupted = false;
+  {
+    Progress progress(approx, "proxygi proxies");
+    approx->Update();
+    interrupted = progress.Interrupted();
+  }
+  if (interrupted)
+  {
+    return InterruptedExitCode;
+  }
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (reporter->Errors || approx->GetOutput()->GetNumberOfPoints() == 0)
@@ -236,11 +250,16 @@ int RunProxies(const Args& args)
   std::printf("total %.2f s (build %.2f s, E at resolution %d)\n", seconds,
     approx->GetTotalBuildTime(), static_cast<int>(resolution));
 
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->AddObserver(vtkCommand::ErrorEvent, reporter);
-  writer->SetInputData(proxies);
-  writer->SetFileName(output.c_str());
-  if (!writer->Write() || reporter->Errors)
+  const bool written = WriteThenRename(output,
+    [&](const std::string& file)
+    {
+      vtkNew<vtkXMLPolyDataWriter> writer;
+      writer->AddObserver(vtkCommand::ErrorEvent, reporter);
+      writer->SetInputData(proxies);
+      writer->SetFileName(file.c_str());
+      return writer->Write() == 1 && !reporter->Errors;
+    });
+  if (!written)
   {
     std::fprintf(stderr, "proxygi proxies: cannot write '%s'\n", output.c_str());
     return 1;

@@ -2,6 +2,7 @@
 // (EXR + tone-mapped PNG) or per vertex (.vtp with the radiance arrays).
 #include "proxygiCommands.h"
 #include "proxygiImage.h"
+#include "proxygiProgress.h"
 
 #include "pgiScene.h"
 #include "vtkPGIEXRWriter.h"
@@ -36,11 +37,11 @@ Monte Carlo ground truth (Embree) of a scene file, or of the built-in default
 scene (the bunny over a plane under the forest map) when none is given.
 
 Per pixel (default):
-  -o FILE            radiance image, OpenEXR (default reference.exr)
-  --png FILE         also a tone-mapped sRGB PNG (exposure: --exposure E, or auto)
+  -o FILE.exr        radiance image, OpenEXR (default reference.exr)
+  --png FILE.png     also a tone-mapped sRGB PNG (exposure: --exposure E, or auto)
   --size WxH         image size (default: the scene camera's)
 Per vertex:
-  --per-vertex FILE  write object K's vertices with DirectShadowed,
+  --per-vertex FILE.vtp  write object K's vertices with DirectShadowed,
                      IndirectOneBounce, Radiance and *StdErr arrays (.vtp);
                      the other objects shadow and reflect
   --object K         the receiving object (default 0)
@@ -50,6 +51,12 @@ Both:
   --seed S           random seed (default 1)
   --proxies FILE     sphere proxies (.vtp with a Radius array) replace the
                      non-receiving objects (per vertex) or all objects (per pixel)
+
+Progress is shown on standard error (a bar on a terminal, else a line each
+10%). Ctrl-C stops the tracing and writes nothing. Files are written under a
+temporary name and renamed, never left half-written. Exit codes: 0 done,
+1 failed (scene, data or writing), 2 bad arguments (an output name must end
+in its format's extension), 130 interrupted.
 )";
 
 double ElapsedSeconds(std::chrono::steady_clock::time_point start)
@@ -78,6 +85,16 @@ int RunReference(const Args& args)
   if (spp < 1 || bounces < 0 || bounces > 64)
   {
     std::fprintf(stderr, "proxygi reference: need --spp >= 1 and 0 <= --bounces <= 64\n");
+    return 2;
+  }
+  // The output names first: a wrong extension is refused before the work.
+  const std::string perVertex = Option(args, "--per-vertex", "");
+  const std::string exr = Option(args, "-o", "reference.exr");
+  const std::string png = Option(args, "--png", "");
+  if ((!perVertex.empty() && !HasExtension("reference", "--per-vertex", perVertex, { ".vtp" })) ||
+    (perVertex.empty() && !HasExtension("reference", "-o", exr, { ".exr" })) ||
+    (!png.empty() && !HasExtension("reference", "--png", png, { ".png" })))
+  {
     return 2;
   }
   // The scene: the first argument that is not an option or an option's value.
@@ -118,7 +135,6 @@ int RunReference(const Args& args)
   std::printf("scene: %s (%zu objects)\n", scene.Name.c_str(), loaded.Objects.size());
   const auto start = std::chrono::steady_clock::now();
 
-  const std::string perVertex = Option(args, "--per-vertex", "");
   if (!perVertex.empty())
   {
     if (objectIndex < 0 || objectIndex >= static_cast<int>(loaded.Objects.size()))
@@ -145,7 +161,16 @@ int RunReference(const Args& args)
     reference->SetSamples(spp);
     reference->SetMaxBounces(bounces);
     reference->SetSeed(static_cast<unsigned>(seed));
-    reference->Update();
+    bool interrupted = false;
+    {
+      Progress progress(reference, "proxygi reference");
+      reference->Update();
+      interrupted = progress.Interrupted();
+    }
+    if (interrupted)
+    {
+      return InterruptedExitCode;
+    }
     vtkPolyData* out = reference->GetOutput();
     if (out->GetNumberOfPoints() == 0)
     {
@@ -156,11 +181,20 @@ int RunReference(const Args& args)
     const double rays = out->GetFieldData()->GetArray("Rays")->GetTuple1(0);
     const double meanRel = out->GetFieldData()->GetArray("MeanRelativeStdErr")->GetTuple1(0);
     const double rel = out->GetFieldData()->GetArray("RelativeRMSStdErr")->GetTuple1(0);
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName(perVertex.c_str());
-    writer->SetInputData(out);
-    writer->SetDataModeToAppended();
-    writer->Write();
+    const bool written = WriteThenRename(perVertex,
+      [&](const std::string& file)
+      {
+        vtkNew<vtkXMLPolyDataWriter> writer;
+        writer->SetFileName(file.c_str());
+        writer->SetInputData(out);
+        writer->SetDataModeToAppended();
+        return writer->Write() == 1;
+      });
+    if (!written)
+    {
+      std::fprintf(stderr, "proxygi reference: cannot write %s\n", perVertex.c_str());
+      return 1;
+    }
     std::printf("per vertex: %lld receivers, %d samples, %d bounce(s), %d threads\n",
       static_cast<long long>(out->GetNumberOfPoints()), spp, bounces,
       vtkSMPTools::GetEstimatedNumberOfThreads());
@@ -195,7 +229,16 @@ int RunReference(const Args& args)
   image->SetSamples(spp);
   image->SetMaxBounces(bounces);
   image->SetSeed(static_cast<unsigned>(seed));
-  image->Update();
+  bool interrupted = false;
+  {
+    Progress progress(image, "proxygi reference");
+    image->Update();
+    interrupted = progress.Interrupted();
+  }
+  if (interrupted)
+  {
+    return InterruptedExitCode;
+  }
   vtkImageData* radiance = image->GetOutput();
   if (radiance->GetNumberOfPoints() == 0)
   {
@@ -216,12 +259,17 @@ int RunReference(const Args& args)
       ++counted;
     }
   }
-  const std::string exr = Option(args, "-o", "reference.exr");
-  vtkNew<vtkPGIEXRWriter> writer;
-  writer->SetFileName(exr.c_str());
-  writer->SetInputData(radiance);
-  if (!writer->Write())
+  const bool written = WriteThenRename(exr,
+    [&](const std::string& file)
+    {
+      vtkNew<vtkPGIEXRWriter> writer;
+      writer->SetFileName(file.c_str());
+      writer->SetInputData(radiance);
+      return writer->Write() == 1;
+    });
+  if (!written)
   {
+    std::fprintf(stderr, "proxygi reference: cannot write %s\n", exr.c_str());
     return 1;
   }
   std::printf("per pixel: %dx%d, %d samples, %d bounce(s), %d threads\n", scene.Size[0],
@@ -229,11 +277,11 @@ int RunReference(const Args& args)
   std::printf("time %.2f s, mean relative standard error of lit pixels %.3f%%\n", seconds,
     counted ? 100 * rel / counted : 0.0);
   std::printf("wrote %s\n", exr.c_str());
-  const std::string png = Option(args, "--png", "");
   if (!png.empty())
   {
     const double exposure = exposureOption > 0.0 ? exposureOption : AutoExposure(radiance);
-    if (!WriteTonemappedPNG(radiance, exposure, png))
+    if (!WriteThenRename(png,
+          [&](const std::string& file) { return WriteTonemappedPNG(radiance, exposure, file); }))
     {
       std::fprintf(stderr, "proxygi reference: cannot write %s\n", png.c_str());
       return 1;
