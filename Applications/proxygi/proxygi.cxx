@@ -2,6 +2,9 @@
 // per job; each prints what it did, how long it took and how far from the
 // reference it landed.
 #include "proxygiCommands.h"
+#include "proxygiProgress.h"
+
+#include "vtkLogger.h"
 
 #include <vtkSMPTools.h>
 #include <vtkVersionMacros.h>
@@ -110,6 +113,11 @@ Commands:
              Run 'proxygi reference --help'.
 
   proxygi --help | --version
+
+Every command takes --quiet (errors only, no progress) and --verbose (VTK's
+log down to trace level); by default notices (INFO) are shown.
+Exit codes: 0 done, 1 failed (input, data, rendering or writing), 2 bad
+arguments or unknown command, 130 interrupted (Ctrl-C).
 )";
 
 int RunBench(const char* self, const proxygi::cli::Args& args)
@@ -155,7 +163,26 @@ int main(int argc, char* argv[])
   }
 #endif
   const std::string command = argv[1];
-  const proxygi::cli::Args args(argv + 2, argv + argc);
+  // --quiet and --verbose apply to every command: they set how much of
+  // vtkLogger's output (VTK's warnings and errors included) reaches stderr.
+  proxygi::cli::Args args;
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_INFO);
+  for (int k = 2; k < argc; ++k)
+  {
+    if (!std::strcmp(argv[k], "--quiet"))
+    {
+      vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_ERROR);
+      proxygi::cli::SetProgressShown(false);
+    }
+    else if (!std::strcmp(argv[k], "--verbose"))
+    {
+      vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_TRACE);
+    }
+    else
+    {
+      args.emplace_back(argv[k]);
+    }
+  }
   if (command == "--version")
   {
     std::printf("proxygi %s\n", PROXYGI_VERSION);

@@ -20,6 +20,7 @@ namespace cli
 namespace
 {
 std::atomic<bool> InterruptRequested(false);
+bool ProgressShown = true;
 
 extern "C" void OnInterrupt(int)
 {
@@ -84,7 +85,7 @@ struct Progress::Internals
       impl->Interrupted = true;
       impl->Filter->SetAbortExecute(1);
     }
-    if (!impl->Interrupted) // the executive still reports 100% at the end
+    if (!impl->Interrupted && ProgressShown) // the executive still reports 100% at the end
     {
       impl->Show(data ? *static_cast<double*>(data) : 0.0);
     }
@@ -118,6 +119,11 @@ Progress::~Progress()
       this->Impl->What.c_str(), this->Impl->Elapsed());
   }
   delete this->Impl;
+}
+
+void SetProgressShown(bool shown)
+{
+  ProgressShown = shown;
 }
 
 bool Progress::Interrupted() const

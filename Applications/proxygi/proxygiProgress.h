@@ -36,6 +36,9 @@ private:
   Internals* Impl;
 };
 
+/// Whether Progress draws anything (off with --quiet); Ctrl-C works either way.
+void SetProgressShown(bool shown);
+
 /// Exit code of a command stopped by Ctrl-C (128 + SIGINT, as shells report it).
 constexpr int InterruptedExitCode = 130;
 

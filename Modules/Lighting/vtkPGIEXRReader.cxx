@@ -6,6 +6,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkLogger.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -17,6 +18,9 @@
 #include <ImfInputFile.h>
 
 #include <cmath>
+#include <mutex>
+#include <set>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkPGIEXRReader);
@@ -138,8 +142,17 @@ int vtkPGIEXRReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
   }
   if (this->NumberOfClampedValues > 0)
   {
-    vtkWarningMacro("'" << this->FileName << "': " << this->NumberOfClampedValues
-                        << " NaN, Inf or negative channel values clamped.");
+    // A data-quality notice, not a fault: said once per file and process
+    // (several readers of one map, or re-reads, repeat nothing).
+    static std::mutex mutex;
+    static std::set<std::string> said;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (said.insert(this->FileName).second)
+    {
+      vtkLog(INFO,
+        "'" << this->FileName << "': " << this->NumberOfClampedValues
+            << " NaN, Inf or negative channel values clamped (GetNumberOfClampedValues).");
+    }
   }
   vtkNew<vtkFloatArray> radiance;
   radiance->SetName("Radiance");

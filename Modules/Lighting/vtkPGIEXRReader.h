@@ -11,7 +11,8 @@
  * and B channels, non-2:1 size when LatLong is on. NaN, Inf and negative
  * texels are not radiance: they are clamped (NaN and negative to 0, +Inf to
  * ClampValue), counted in GetNumberOfClampedValues() and a field-data array
- * "ClampedValues", and reported with a warning.
+ * "ClampedValues", and reported once per file (vtkLogger, INFO: a notice
+ * about the data, not a fault).
  */
 #ifndef vtkPGIEXRReader_h
 #define vtkPGIEXRReader_h
