@@ -11,6 +11,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <cmath>
 #include <fstream>
@@ -131,6 +132,16 @@ int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
       return 0;
     }
   }
+  // A vertex line takes at least 6 bytes ("0 0 0\n"), a face 4 ("1 0\n"):
+  // counts the file cannot hold are refused before anything is allocated.
+  const unsigned long long bytes = vtksys::SystemTools::FileLength(this->FileName);
+  if (static_cast<unsigned long long>(nv) > bytes / 6 ||
+    static_cast<unsigned long long>(nf) > bytes / 4)
+  {
+    vtkErrorMacro("'" << this->FileName << "': the header claims " << nv << " vertices and " << nf
+                      << " faces, more than a file of " << bytes << " bytes can hold.");
+    return 0;
+  }
 
   vtkNew<vtkPoints> points;
   points->SetDataTypeToFloat();
@@ -210,6 +221,12 @@ int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
     if (fs.fail() || k < 1)
     {
       vtkErrorMacro("'" << this->FileName << "': face " << f << " has no vertex count.");
+      return 0;
+    }
+    if (k > nv || static_cast<unsigned long long>(k) > bytes / 2)
+    {
+      vtkErrorMacro("'" << this->FileName << "': face " << f << " claims " << k
+                        << " vertices, more than the mesh (" << nv << ") or the file holds.");
       return 0;
     }
     ids.resize(k);

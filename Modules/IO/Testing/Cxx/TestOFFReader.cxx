@@ -86,7 +86,11 @@ int TestOFFReader(int, char*[])
 
   // Bad files: an error each, empty output, no crash.
   const char* bad[] = { "OFF\n3 1 0\n0 0 0\n1 0 0\n", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n",
-    "OFF\n3 1 0\n0 zero 0\n1 0 0\n0 1 0\n3 0 1 2\n", "" };
+    "OFF\n3 1 0\n0 zero 0\n1 0 0\n0 1 0\n3 0 1 2\n", "",
+    // Counts no file of this size can hold: refused before allocating
+    // (1e11 vertices once aborted the program with std::bad_alloc).
+    "OFF\n100000000000 1 0\n0 0 0\n", "OFF\n3 100000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+    "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n100000000000 0 1 2\n" };
   int index = 0;
   for (const char* text : bad)
   {
