@@ -8,7 +8,9 @@
 import os
 import subprocess
 import sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from paraview.simple import *
+from proxygi_scene import check, finish
 from paraview import servermanager
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 
@@ -19,15 +21,6 @@ reference = os.path.join(work, "bunny-16-kmeans.vtp")
 # The C++ classes' answer: the proxygi program on the same mesh and knobs.
 subprocess.run([proxygi, "proxies", mesh, "-n", "16", "--method", "kmeans", "-o", reference],
                check=True, stdout=subprocess.DEVNULL)
-failures = []
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what)
-    if not ok:
-        failures.append(what)
-
-
 import time
 start = time.perf_counter()
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -172,5 +165,4 @@ proxies.NumberOfSpheres = 0  # clamped to 1 by the class
 proxies.UpdatePipeline()
 check(proxies.GetDataInformation().GetNumberOfPoints() >= 1, "zero spheres asked: the class's bound (1)")
 
-print("%d failed" % len(failures))
-sys.exit(1 if failures else 0)
+finish()
