@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Ctrl-C during long work: `proxygi reference` and `proxygi proxies` get
-# SIGINT two seconds into their work; each must stop, say it, exit 130 and
-# leave no output file (nor a temporary one) behind. Then the same runs
+# Ctrl-C during long work: `proxygi reference`, `proxygi proxies` and
+# `proxygi render` (building a scene's proxies) get SIGINT two seconds into
+# their work; each must stop, say it, exit 130 and leave no output file (nor
+# a temporary one, nor a cache entry) behind. Then the same runs
 # without an interrupt write their files: the interrupted ones were cut
 # short, not finished.
 #   cli_interrupt.sh PROXYGI MESH.off WORKDIR
@@ -20,8 +21,8 @@ check() { # name expected-status command...
   wait "$pid"
   local status=$?
   local left
-  left=$(ls "$work" | grep -v '\.log$' | tr '\n' ' ')
-  if [ "$status" -eq "$expected" ] && grep -q "interrupted after .* nothing written" "$work/$name.log" &&
+  left=$( (ls "$work" | grep -v '\.log$' | grep -v '^cache$'; find "$work/cache" -type f 2>/dev/null) | tr '\n' ' ')
+  if [ "$status" -eq "$expected" ] && grep -q "interrupted .*nothing written" "$work/$name.log" &&
     [ -z "$left" ]; then
     echo "ok    $name: exit $status, '$(grep interrupted "$work/$name.log")', no file"
   else
@@ -33,6 +34,11 @@ check() { # name expected-status command...
 
 check reference 130 "$proxygi" reference --size 320x240 --spp 256 -o "$work/ref.exr"
 check proxies 130 "$proxygi" proxies "$mesh" -n 64 -o "$work/spheres.vtp"
+check render 130 "$proxygi" render --mode vertex --no-error --cache "$work/cache" -o "$work/render.png"
+# Without a terminal, progress is a line now and then.
+grep -q "^proxygi render: building the proxies of 'bunny': 0%" "$work/render.log" &&
+  echo "ok    render shows the proxies' progress as lines" ||
+  { echo "FAIL  render showed no progress lines"; failures=$((failures + 1)); }
 # Not interrupted: the files appear (small budgets).
 "$proxygi" reference --size 16x12 --spp 1 -o "$work/ref.exr" >/dev/null 2>&1 &&
   [ -f "$work/ref.exr" ] && echo "ok    reference without Ctrl-C writes its file" ||

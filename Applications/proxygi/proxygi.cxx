@@ -108,6 +108,10 @@ Commands:
   shade      The CPU GI filter on a receiver mesh (.off/.vtp) and a proxies
              .vtp with the classes' defaults: the arrays and the plan.
              Run 'proxygi shade --help'.
+  view       An interactive window on a scene with GI live: keys switch the
+             effects, the backend, the SH order and the sphere count; a handle
+             drags a light; an overlay shows the plan, times and error.
+             Run 'proxygi view --help'.
   reference  Embree path-traced ground truth of a scene (or the default
              scene), per pixel (EXR/PNG) or per vertex (.vtp), with its noise.
              Run 'proxygi reference --help'.
@@ -211,6 +215,10 @@ int main(int argc, char* argv[])
   if (command == "shade")
   {
     return proxygi::cli::RunShade(args);
+  }
+  if (command == "view")
+  {
+    return proxygi::cli::RunView(args);
   }
   std::fprintf(stderr, "proxygi: unknown command '%s'\n\n%s", command.c_str(), Usage);
   return 2;

@@ -21,6 +21,8 @@ int RunReference(const Args& args);
 int RunProxies(const Args& args);
 /// The CPU GI filter on a receiver mesh and a proxies file.
 int RunShade(const Args& args);
+/// An interactive window on a scene with GI live.
+int RunView(const Args& args);
 
 /// Value of the last "--name value" (or default); sets `ok` false on a bad number.
 std::string Option(const Args& args, const std::string& name, const std::string& fallback);

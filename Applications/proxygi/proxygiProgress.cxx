@@ -177,5 +177,18 @@ bool WriteThenRename(const std::string& path, const std::function<bool(const std
   }
   return true;
 }
+void SetupProgress::Begin(vtkAlgorithm* filter, const std::string& what)
+{
+  this->Current.reset(new Progress(filter, this->Command + ": " + what));
+}
+
+bool SetupProgress::End(vtkAlgorithm*)
+{
+  const bool stopped = this->Current && this->Current->Interrupted();
+  this->Current.reset();
+  this->Stopped = this->Stopped || stopped;
+  return !stopped;
+}
+
 } // namespace cli
 } // namespace proxygi

@@ -4,7 +4,10 @@
 #ifndef proxygiProgress_h
 #define proxygiProgress_h
 
+#include "pgiSceneSetup.h" // SetupMonitor
+
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,6 +37,25 @@ public:
 private:
   struct Internals;
   Internals* Impl;
+};
+
+/// A Progress for each long filter of a scene's set-up (proxies, reference).
+class SetupProgress : public SetupMonitor
+{
+public:
+  explicit SetupProgress(const std::string& command)
+    : Command(command)
+  {
+  }
+  void Begin(vtkAlgorithm* filter, const std::string& what) override;
+  bool End(vtkAlgorithm* filter) override;
+  /// Whether Ctrl-C stopped one of them.
+  bool Interrupted() const { return this->Stopped; }
+
+private:
+  std::string Command;
+  std::unique_ptr<Progress> Current;
+  bool Stopped = false;
 };
 
 /// Whether Progress draws anything (off with --quiet); Ctrl-C works either way.

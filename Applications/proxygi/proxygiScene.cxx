@@ -3,8 +3,10 @@
 // meshes, shades every vertex with SH soft shadows (vtkPGIGlobalIllumination),
 // renders the result offscreen with VTK, and compares the per-vertex radiance
 // with the Embree reference of the same scene (computed once and cached).
+#include "proxygiBackends.h"
 #include "proxygiCommands.h"
 #include "proxygiImage.h"
+#include "proxygiProgress.h"
 
 #include "pgiOffscreenWindow.h"
 #include "pgiScene.h"
@@ -223,113 +225,6 @@ std::vector<vtkSmartPointer<vtkPolyData>> ShadeOnCPU(
   return shaded;
 }
 
-// Exposure: the 95th percentile of the per-vertex radiance to 0.8.
-double AutomaticExposure(const std::vector<vtkSmartPointer<vtkPolyData>>& shaded)
-{
-  std::vector<double> luminance;
-  for (auto& s : shaded)
-  {
-    vtkDataArray* r = s->GetPointData()->GetArray("Radiance");
-    for (vtkIdType i = 0; i < r->GetNumberOfTuples(); ++i)
-    {
-      luminance.push_back(
-        Luminance(r->GetComponent(i, 0), r->GetComponent(i, 1), r->GetComponent(i, 2)));
-    }
-  }
-  return AutoExposure(luminance);
-}
-
-// The CPU filter's radiance as vertex colours, no VTK lighting.
-void AddVertexColourActors(
-  vtkRenderer* renderer, const std::vector<vtkSmartPointer<vtkPolyData>>& shaded, double exposure)
-{
-  for (auto& s : shaded)
-  {
-    vtkDataArray* r = s->GetPointData()->GetArray("Radiance");
-    vtkNew<vtkUnsignedCharArray> colors;
-    colors->SetName("DisplayColors");
-    colors->SetNumberOfComponents(3);
-    colors->SetNumberOfTuples(r->GetNumberOfTuples());
-    for (vtkIdType i = 0; i < r->GetNumberOfTuples(); ++i)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        colors->SetValue(3 * i + c, ToSRGB8(exposure * r->GetComponent(i, c)));
-      }
-    }
-    vtkNew<vtkPolyData> display;
-    display->ShallowCopy(s);
-    display->GetPointData()->SetScalars(colors);
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputData(display);
-    mapper->SetColorModeToDirectScalars();
-    mapper->ScalarVisibilityOn();
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    actor->GetProperty()->LightingOff();
-    renderer->AddActor(actor);
-  }
-}
-
-// Per vertex on the GPU: one GI mapper per object, all on the run's settings.
-std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> AddGPUMappers(vtkRenderer* renderer,
-  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, vtkPGIGISettings* settings,
-  const LoadedScene& loaded, const SceneProxies& proxies, double exposure)
-{
-  std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> mappers;
-  for (auto& object : receivers)
-  {
-    auto mapper = vtkSmartPointer<vtkPGIGIPolyDataMapper>::New();
-    mapper->SetInputData(object);
-    mapper->SetProxies(proxies.Spheres);
-    mapper->SetLighting(loaded.Lighting);
-    for (const auto& plane : proxies.Planes)
-    {
-      mapper->AddBlockerPlane(plane.data(), plane.data() + 3, plane.data() + 6);
-    }
-    mapper->SetSettings(settings);
-    mapper->SetExposure(exposure > 0.0 ? exposure : 1.0);
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    renderer->AddActor(actor);
-    mappers.push_back(mapper);
-  }
-  return mappers;
-}
-
-// Per pixel on the GPU: plain mappers (the albedo as diffuse colour) under the pass.
-void AddImageSpacePass(vtkRenderer* renderer, vtkPGIImageSpaceGIPass* pass,
-  const SceneDescription& scene, const std::vector<vtkSmartPointer<vtkPolyData>>& receivers,
-  vtkPGIGISettings* settings, const LoadedScene& loaded, const SceneProxies& proxies,
-  const RenderOptions& o)
-{
-  for (std::size_t k = 0; k < receivers.size(); ++k)
-  {
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputData(receivers[k]);
-    mapper->ScalarVisibilityOff();
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    const double* albedo = scene.Objects[k].Albedo;
-    actor->GetProperty()->SetColor(albedo[0], albedo[1], albedo[2]);
-    actor->GetProperty()->SetAmbient(0.0);
-    actor->GetProperty()->SetDiffuse(1.0);
-    actor->GetProperty()->SetSpecular(0.0);
-    renderer->AddActor(actor);
-  }
-  pass->SetProxies(proxies.Spheres);
-  pass->SetLighting(loaded.Lighting);
-  for (const auto& plane : proxies.Planes)
-  {
-    pass->AddBlockerPlane(plane.data(), plane.data() + 3, plane.data() + 6);
-  }
-  pass->SetSettings(settings);
-  pass->SetReceiverScale(o.ReceiverScale);
-  pass->SetExposure(o.Exposure > 0.0 ? o.Exposure : 1.0);
-  pass->MeasurePassTimesOn();
-  renderer->SetPass(pass);
-}
-
 // GPU mode after the first frame: the per-vertex radiance read back (the
 // error and the exposure need it), then one frame that recomputes GI timed.
 bool ReadBackGPU(vtkRenderWindow* window,
@@ -372,41 +267,6 @@ bool ReadBackGPU(vtkRenderWindow* window,
     mapper->AlwaysRecomputeOff();
   }
   return true;
-}
-
-// Image-space mode has no per-vertex radiance: the automatic exposure reads
-// the geometry pixels of a frame drawn at a low exposure (radiance up to 32
-// unclipped) back to radiance.
-double ExposureFromPicture(vtkRenderWindow* window, vtkPGIImageSpaceGIPass* pass)
-{
-  const double probe = 1.0 / 32.0;
-  pass->SetExposure(probe);
-  window->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  int* size = window->GetSize();
-  vtkNew<vtkFloatArray> depth;
-  window->GetZbufferData(0, 0, size[0] - 1, size[1] - 1, depth);
-  vtkDataArray* picture = grab->GetOutput()->GetPointData()->GetScalars();
-  std::vector<double> luminance;
-  for (vtkIdType i = 0; i < picture->GetNumberOfTuples() && i < depth->GetNumberOfTuples(); ++i)
-  {
-    if (depth->GetValue(i) < 1.0f)
-    {
-      double rgb[3];
-      for (int c = 0; c < 3; ++c)
-      {
-        rgb[c] = FromSRGB8(static_cast<unsigned char>(picture->GetComponent(i, c))) / probe;
-      }
-      luminance.push_back(Luminance(rgb[0], rgb[1], rgb[2]));
-    }
-  }
-  const double exposure = AutoExposure(luminance);
-  pass->SetExposure(exposure);
-  return exposure;
 }
 
 // Image-space mode: the first frame built shaders and tables; the second is timed per pass.
@@ -459,10 +319,12 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   std::printf("scene: %s\n", scene.Name.c_str());
 
   SceneProxies proxies;
-  if (!BuildSceneProxies(scene, loaded, o.Spheres, o.Cache, proxies, error))
+  SetupProgress progress("proxygi render");
+  if (!BuildSceneProxies(scene, loaded, o.Spheres, o.Cache, proxies, error, &progress))
   {
-    std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
-    return 1;
+    std::fprintf(stderr, "proxygi render: %s%s\n", error.c_str(),
+      progress.Interrupted() ? "; nothing written, nothing cached" : "");
+    return progress.Interrupted() ? InterruptedExitCode : 1;
   }
   const auto receiversIn = SceneReceivers(loaded);
   vtkIdType receivers = 0;
@@ -496,7 +358,9 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   }
   else if (o.ImageSpace())
   {
-    AddImageSpacePass(renderer, pass, scene, receiversIn, settings, loaded, proxies, o);
+    AddImageSpacePass(
+      renderer, pass, scene, receiversIn, settings, loaded, proxies, o.ReceiverScale, o.Exposure);
+    pass->MeasurePassTimesOn();
   }
   else
   {
@@ -577,12 +441,24 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       tracer->SetCamera(loaded.Camera);
       tracer->SetSize(scene.Size);
       tracer->SetSamples(pixelSpp);
-      tracer->Update();
+      {
+        Progress traced(tracer, "proxygi render: tracing Embree's image");
+        tracer->Update();
+        if (traced.Interrupted())
+        {
+          std::fprintf(stderr, "proxygi render: interrupted; Embree's image was not cached\n");
+          return InterruptedExitCode;
+        }
+      }
       truth = tracer->GetOutput();
-      vtkNew<vtkXMLImageDataWriter> writer;
-      writer->SetFileName(cachedImage.c_str());
-      writer->SetInputData(truth);
-      writer->Write();
+      WriteThenRename(cachedImage,
+        [&](const std::string& path)
+        {
+          vtkNew<vtkXMLImageDataWriter> writer;
+          writer->SetFileName(path.c_str());
+          writer->SetInputData(truth);
+          return writer->Write() == 1;
+        });
     }
     if (!o.ReferencePNG.empty() && WriteTonemappedPNG(truth, exposure, o.ReferencePNG))
     {
@@ -665,12 +541,13 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   if (!o.NoError && !o.ImageSpace())
   {
     double seconds = 0.0;
-    const auto reference =
-      SceneReference(scene, loaded, receiversIn, referenceSpp, cache, nullptr, seconds, error);
+    const auto reference = SceneReference(
+      scene, loaded, receiversIn, referenceSpp, cache, nullptr, seconds, error, 1, true, &progress);
     if (reference.empty())
     {
-      std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
-      return 1;
+      std::fprintf(stderr, "proxygi render: %s%s\n", error.c_str(),
+        progress.Interrupted() ? "; the reference was not cached" : "");
+      return progress.Interrupted() ? InterruptedExitCode : 1;
     }
     // The GPU reads back the total only.
     for (std::size_t k = 0; k < shaded.size(); ++k)

@@ -388,6 +388,22 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
 }
 } // namespace
 
+void SetSceneLights(const SceneDescription& scene, vtkPGILighting* lighting)
+{
+  lighting->RemoveAllLights();
+  for (const SceneLight& l : scene.Lights)
+  {
+    if (l.Sphere)
+    {
+      lighting->AddSphereLight(l.Position, l.Radius, l.Value);
+    }
+    else
+    {
+      lighting->AddPointLight(l.Position, l.Value);
+    }
+  }
+}
+
 bool BuildScene(const SceneDescription& scene, LoadedScene& loaded, std::string& error)
 {
   loaded = LoadedScene();
@@ -503,17 +519,7 @@ bool BuildScene(const SceneDescription& scene, LoadedScene& loaded, std::string&
     loaded.Lighting->SetUniformRadiance(u);
   }
   loaded.Lighting->SetEnvironmentRotation(scene.EnvironmentRotation);
-  for (const SceneLight& l : scene.Lights)
-  {
-    if (l.Sphere)
-    {
-      loaded.Lighting->AddSphereLight(l.Position, l.Radius, l.Value);
-    }
-    else
-    {
-      loaded.Lighting->AddPointLight(l.Position, l.Value);
-    }
-  }
+  SetSceneLights(scene, loaded.Lighting);
   loaded.Camera = vtkSmartPointer<vtkCamera>::New();
   loaded.Camera->SetPosition(scene.CameraPosition);
   loaded.Camera->SetFocalPoint(scene.FocalPoint);

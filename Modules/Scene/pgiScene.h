@@ -106,6 +106,9 @@ struct LoadedScene
 PROXYGISCENE_EXPORT bool BuildScene(
   const SceneDescription& scene, LoadedScene& loaded, std::string& error);
 
+/// The scene's local lights as `lighting`'s (replacing the ones it had).
+PROXYGISCENE_EXPORT void SetSceneLights(const SceneDescription& scene, vtkPGILighting* lighting);
+
 /// Resolves a data path as described above ("" when not found).
 PROXYGISCENE_EXPORT std::string ResolveDataPath(
   const std::string& path, const std::string& baseFolder);

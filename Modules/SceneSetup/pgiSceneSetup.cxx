@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -34,6 +35,22 @@ namespace proxygi
 namespace
 {
 using Clock = std::chrono::steady_clock;
+
+// Updates a long filter under the monitor; false (error "interrupted") when it was stopped.
+bool Run(vtkAlgorithm* filter, const std::string& what, SetupMonitor* monitor, std::string& error)
+{
+  if (monitor)
+  {
+    monitor->Begin(filter, what);
+  }
+  filter->Update();
+  if ((monitor && !monitor->End(filter)) || filter->GetAbortExecute())
+  {
+    error = "interrupted while " + what;
+    return false;
+  }
+  return true;
+}
 
 bool Exists(const std::string& path)
 {
@@ -49,13 +66,18 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& path)
   return out && out->GetNumberOfPoints() > 0 ? vtkSmartPointer<vtkPolyData>(out) : nullptr;
 }
 
+// Cache entries appear whole or not at all: written aside, then renamed.
 void Write(vtkPolyData* data, const std::string& path)
 {
+  const std::string aside = path + ".writing";
   vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetFileName(path.c_str());
+  writer->SetFileName(aside.c_str());
   writer->SetInputData(data);
   writer->SetDataModeToAppended();
-  writer->Write();
+  if (writer->Write() != 1 || std::rename(aside.c_str(), path.c_str()) != 0)
+  {
+    std::remove(aside.c_str());
+  }
 }
 
 // A cache key that changes whenever what the cached data depends on does.
@@ -115,8 +137,10 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(const LoadedScene& load
   return receivers;
 }
 
+SetupMonitor::~SetupMonitor() = default;
+
 bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded, int spheresPerMesh,
-  const std::string& cacheDir, SceneProxies& proxies, std::string& error)
+  const std::string& cacheDir, SceneProxies& proxies, std::string& error, SetupMonitor* monitor)
 {
   const auto t0 = Clock::now();
   if (!cacheDir.empty())
@@ -175,7 +199,10 @@ bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded,
       vtkNew<vtkPGISphereSetApproximation> approximation;
       approximation->SetInputData(mesh);
       approximation->SetNumberOfSpheres(spheresPerMesh);
-      approximation->Update();
+      if (!Run(approximation, "building the proxies of '" + object.Name + "'", monitor, error))
+      {
+        return false;
+      }
       set = approximation->GetOutput();
       if (!cached.empty() && set->GetNumberOfPoints() > 0)
       {
@@ -231,7 +258,10 @@ bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded,
     vtkNew<vtkPGISphereLightSampler> sampler;
     sampler->SetInputConnection(meshes->GetOutputPort());
     sampler->SetProxiesConnection(hierarchy->GetOutputPort());
-    sampler->Update();
+    if (!Run(sampler, "sampling the proxies' surfaces", monitor, error))
+    {
+      return false;
+    }
     proxies.Spheres = sampler->GetOutput();
     if (!proxies.Spheres || proxies.Spheres->GetNumberOfPoints() == 0)
     {
@@ -270,7 +300,7 @@ void ConfigureSettings(vtkPGIGISettings* settings, const SceneDescription& scene
 std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(const SceneDescription& scene,
   const LoadedScene& loaded, const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, int spp,
   const std::string& cacheDir, const SceneProxies* proxies, double& seconds, std::string& error,
-  unsigned int seed)
+  unsigned int seed, bool traceMissing, SetupMonitor* monitor)
 {
   std::vector<vtkSmartPointer<vtkPolyData>> result;
   seconds = 0.0;
@@ -296,6 +326,11 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(const SceneDescription&
       seconds += s;
       result.push_back(reference);
       continue;
+    }
+    if (!traceMissing)
+    {
+      error = "not cached";
+      return {};
     }
     vtkNew<vtkPGIReferenceIllumination> ref;
     ref->SetInputData(receivers[k]);
@@ -338,7 +373,10 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(const SceneDescription&
     ref->SetSamples(spp);
     ref->SetSeed(seed);
     const auto t0 = Clock::now();
-    ref->Update();
+    if (!Run(ref, "tracing the reference of '" + scene.Objects[k].Name + "'", monitor, error))
+    {
+      return {};
+    }
     const double s = std::chrono::duration<double>(Clock::now() - t0).count();
     seconds += s;
     reference = ref->GetOutput();

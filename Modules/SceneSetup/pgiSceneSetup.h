@@ -17,12 +17,27 @@
 #include <string>
 #include <vector>
 
+class vtkAlgorithm;
 class vtkPGIGISettings;
 class vtkPGIGlobalIllumination;
 class vtkPolyData;
 
 namespace proxygi
 {
+
+/**
+ * Watches the long filters of a scene's set-up (proxy building, the
+ * reference's tracing): Begin before a filter updates, End after it. End
+ * returning false (the user stopped it) makes the set-up fail with
+ * "interrupted" and cache nothing of that filter.
+ */
+class PROXYGISCENESETUP_EXPORT SetupMonitor
+{
+public:
+  virtual ~SetupMonitor();
+  virtual void Begin(vtkAlgorithm* filter, const std::string& what) = 0;
+  virtual bool End(vtkAlgorithm* filter) = 0;
+};
 
 struct SceneProxies
 {
@@ -41,7 +56,7 @@ struct SceneProxies
 /// in `cacheDir` (created if missing; "" = no cache). False with a message.
 PROXYGISCENESETUP_EXPORT bool BuildSceneProxies(const SceneDescription& scene,
   const LoadedScene& loaded, int spheresPerMesh, const std::string& cacheDir, SceneProxies& proxies,
-  std::string& error);
+  std::string& error, SetupMonitor* monitor = nullptr);
 
 /// The receivers of a scene: every object with point normals (unsplit).
 PROXYGISCENESETUP_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(
@@ -65,12 +80,14 @@ PROXYGISCENESETUP_EXPORT void ConfigureGlobalIllumination(vtkPGIGlobalIlluminati
  * `cacheDir` by scene name, object, vertex count, spp and mode; `seconds`
  * is the tracing time (read back from the cache when cached). Runs meant to
  * be compared with each other take different seeds (independent noise).
- * Empty on error.
+ * With `traceMissing` false nothing is traced: empty (error "not cached")
+ * unless every receiver's reference is in the cache. Empty on error.
  */
 PROXYGISCENESETUP_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(
   const SceneDescription& scene, const LoadedScene& loaded,
   const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, int spp, const std::string& cacheDir,
-  const SceneProxies* proxies, double& seconds, std::string& error, unsigned int seed = 1);
+  const SceneProxies* proxies, double& seconds, std::string& error, unsigned int seed = 1,
+  bool traceMissing = true, SetupMonitor* monitor = nullptr);
 
 /// Relative RMSE sqrt(sum |a-b|^2 / sum |b|^2) of two RGB point arrays over
 /// the given objects (all when `objects` is empty); 0 when b is all zero.

@@ -1,0 +1,53 @@
+// The three ways proxygi draws a scene with GI, shared by `render` and
+// `view`: the CPU filter's radiance as vertex colours, the GI mapper per
+// object, and the image-space pass over plain mappers; and the exposure
+// each of them is tone-mapped with.
+#ifndef proxygiBackends_h
+#define proxygiBackends_h
+
+#include "pgiSceneSetup.h"
+#include "vtkSmartPointer.h"
+
+#include <vector>
+
+class vtkPGIGIPolyDataMapper;
+class vtkPGIGISettings;
+class vtkPGIImageSpaceGIPass;
+class vtkPolyData;
+class vtkRenderWindow;
+class vtkRenderer;
+
+namespace proxygi
+{
+namespace cli
+{
+/// The automatic exposure (AutoExposure) of per-vertex "Radiance" arrays.
+double AutomaticExposure(const std::vector<vtkSmartPointer<vtkPolyData>>& shaded);
+
+/// `shaded`'s "Radiance" times `exposure` as sRGB bytes, the scalars of `display`
+/// (a shallow copy of `shaded`).
+void ColourByRadiance(vtkPolyData* shaded, double exposure, vtkPolyData* display);
+
+/// One unlit actor per object drawing ColourByRadiance; returns the displayed data.
+std::vector<vtkSmartPointer<vtkPolyData>> AddVertexColourActors(
+  vtkRenderer* renderer, const std::vector<vtkSmartPointer<vtkPolyData>>& shaded, double exposure);
+
+/// One GI mapper per object, all on `settings` (shared, not copied).
+std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> AddGPUMappers(vtkRenderer* renderer,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, vtkPGIGISettings* settings,
+  const LoadedScene& loaded, const SceneProxies& proxies, double exposure);
+
+/// Plain mappers (the albedo as diffuse colour) under `pass`, the renderer's pass.
+void AddImageSpacePass(vtkRenderer* renderer, vtkPGIImageSpaceGIPass* pass,
+  const SceneDescription& scene, const std::vector<vtkSmartPointer<vtkPolyData>>& receivers,
+  vtkPGIGISettings* settings, const LoadedScene& loaded, const SceneProxies& proxies,
+  int receiverScale, double exposure);
+
+/// Image-space mode has no per-vertex radiance: AutoExposure of the
+/// geometry pixels of a frame drawn at a low exposure, read back to
+/// radiance. Sets it on the pass and returns it.
+double ExposureFromPicture(vtkRenderWindow* window, vtkPGIImageSpaceGIPass* pass);
+} // namespace cli
+} // namespace proxygi
+
+#endif
