@@ -234,6 +234,9 @@ private:
   Clock::time_point FrameStart;
   double FrameMs = 0.0, GIMs = 0.0, ProxiesSeconds = 0.0;
   bool GIChanged = true, ProxiesCached = false;
+  // Per backend: frames that only drew, and GI runs (for the summary at exit).
+  std::map<Backend, std::vector<double>> DrawMs, GIRunMs;
+  void PrintFrameTimes() const;
   std::string ErrorLine = "error: not computed yet";
   int Shots = 0;
 };
@@ -355,6 +358,7 @@ void Viewer::RunCPUFilter()
   if (after != before)
   {
     this->GIMs = Milliseconds(t0, Clock::now());
+    this->GIRunMs[Backend::Vertex].push_back(this->GIMs);
     for (std::size_t k = 0; k < this->Displayed.size(); ++k)
     {
       ColourByRadiance(this->Filters[k]->GetOutput(), this->Exposure, this->Displayed[k]);
@@ -796,10 +800,17 @@ void Viewer::OnRenderEnd(vtkObject*, unsigned long, void*)
       ms += 1e3 * this->Pass->GetPassTime(k);
     }
     this->GIMs = ms;
+    this->GIRunMs[Backend::ImageSpace].push_back(ms);
+    this->DrawMs[Backend::ImageSpace].push_back(this->FrameMs);
   }
   else if (this->Mode == Backend::Gpu && this->GIChanged)
   {
     this->GIMs = this->FrameMs;
+    this->GIRunMs[Backend::Gpu].push_back(this->FrameMs);
+  }
+  else
+  {
+    this->DrawMs[this->Mode].push_back(this->FrameMs);
   }
   this->GIChanged = false;
 }
@@ -826,6 +837,36 @@ void Viewer::OnLampReleased(vtkObject*, unsigned long, void*)
   const double* p = this->LampHandle->GetWorldPosition();
   vtkLog(INFO, "proxygi view: light moved to " << p[0] << " " << p[1] << " " << p[2]);
   this->Refresh();
+}
+
+// Medians per backend: what a frame costs when only the camera moved, and
+// what GI costs when it runs (the image-space pass runs it every frame).
+void Viewer::PrintFrameTimes() const
+{
+  const auto median = [](std::vector<double> v)
+  {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  for (Backend b : { Backend::Gpu, Backend::Vertex, Backend::ImageSpace })
+  {
+    const auto draws = this->DrawMs.find(b);
+    const auto runs = this->GIRunMs.find(b);
+    if (draws == this->DrawMs.end() && runs == this->GIRunMs.end())
+    {
+      continue;
+    }
+    const std::vector<double> none;
+    const std::vector<double>& d = draws != this->DrawMs.end() ? draws->second : none;
+    const std::vector<double>& g = runs != this->GIRunMs.end() ? runs->second : none;
+    std::printf("frame times, %s: %s %.1f ms median over %zu frames; GI %.1f ms median over %zu "
+                "runs%s\n",
+      BackendName(b), b == Backend::ImageSpace ? "every frame (GI included)" : "drawing only",
+      median(d), d.size(), median(g), g.size(),
+      b == Backend::Gpu        ? " (the frames that recomputed it)"
+        : b == Backend::Vertex ? " (the CPU filter)"
+                               : " (the pass's own GPU time)");
+  }
 }
 
 int Viewer::Run()
@@ -862,6 +903,7 @@ int Viewer::Run()
     recorder->Play();
     recorder->Off();
     std::printf("proxygi view: played %s\n", this->Options.Play.c_str());
+    this->PrintFrameTimes();
     return 0;
   }
   if (!this->Options.Record.empty())
@@ -871,6 +913,7 @@ int Viewer::Run()
     recorder->Record();
   }
   this->Interactor->Start();
+  this->PrintFrameTimes();
   return 0;
 }
 
