@@ -8,6 +8,8 @@
 //
 //   ProxyGISweepGI [--reference-spp N] [--cache DIR] [--out PREFIX] [--quick]
 //                  [scene.json ...]
+#include "proxygiProgress.h"
+
 #include "pgiScene.h"
 #include "pgiSceneSetup.h"
 #include "vtkPGIGISettings.h"
@@ -49,6 +51,8 @@
 #include <vector>
 
 using namespace proxygi;
+using proxygi::cli::InterruptedExitCode;
+using proxygi::cli::SetupProgress;
 
 namespace
 {
@@ -118,6 +122,9 @@ int main(int argc, char* argv[])
   }
   vtkSMPTools::SetBackend("STDThread");
   const int repeats = quick ? 1 : 3;
+  // The long set-up work (references, proxies) shows its progress; Ctrl-C
+  // stops it and caches nothing (the timed runs below show none).
+  SetupProgress progress("ProxyGISweepGI");
   std::string error;
   const SceneDescription scene = DefaultScene();
   LoadedScene loaded;
@@ -129,12 +136,12 @@ int main(int argc, char* argv[])
   const auto receivers = SceneReceivers(loaded);
   double refSeconds = 0.0;
   std::printf("reference: %d samples per vertex...\n", referenceSpp);
-  const auto truth =
-    SceneReference(scene, loaded, receivers, referenceSpp, cache, nullptr, refSeconds, error);
+  const auto truth = SceneReference(
+    scene, loaded, receivers, referenceSpp, cache, nullptr, refSeconds, error, 1, true, &progress);
   if (truth.empty())
   {
     std::fprintf(stderr, "%s\n", error.c_str());
-    return 1;
+    return progress.Interrupted() ? InterruptedExitCode : 1;
   }
   const double referenceNoise = RelativeRMS(truth, "RadianceStdErr", "Radiance");
   std::printf("reference noise (relative RMS standard error): %.3f%%, %.1f s\n",
@@ -146,10 +153,10 @@ int main(int argc, char* argv[])
     quick ? std::vector<int>{ 32, 64 } : std::vector<int>{ 16, 32, 64, 128 };
   for (int count : counts)
   {
-    if (!BuildSceneProxies(scene, loaded, count, cache, proxies[count], error))
+    if (!BuildSceneProxies(scene, loaded, count, cache, proxies[count], error, &progress))
     {
       std::fprintf(stderr, "%s\n", error.c_str());
-      return 1;
+      return progress.Interrupted() ? InterruptedExitCode : 1;
     }
     std::printf("proxies: %d asked, %lld leaves, %.1f s%s\n", count,
       static_cast<long long>(proxies[count].Leaves), proxies[count].Seconds,
@@ -365,19 +372,22 @@ int main(int argc, char* argv[])
       return 1;
     }
     SceneProxies sp;
-    if (!BuildSceneProxies(sd, ld, 64, cache, sp, error))
+    if (!BuildSceneProxies(sd, ld, 64, cache, sp, error, &progress))
     {
       std::fprintf(stderr, "%s\n", error.c_str());
-      return 1;
+      return progress.Interrupted() ? InterruptedExitCode : 1;
     }
     const auto rc = SceneReceivers(ld);
     double tracing = 0.0, tracingProxies = 0.0;
-    const auto ref = SceneReference(sd, ld, rc, sceneSpp, cache, nullptr, tracing, error);
-    const auto refProxies = SceneReference(sd, ld, rc, sceneSpp, cache, &sp, tracingProxies, error);
+    const auto ref =
+      SceneReference(sd, ld, rc, sceneSpp, cache, nullptr, tracing, error, 1, true, &progress);
+    const auto refProxies = ref.empty()
+      ? ref
+      : SceneReference(sd, ld, rc, sceneSpp, cache, &sp, tracingProxies, error, 1, true, &progress);
     if (ref.empty() || refProxies.empty())
     {
       std::fprintf(stderr, "%s\n", error.c_str());
-      return 1;
+      return progress.Interrupted() ? InterruptedExitCode : 1;
     }
     std::vector<std::size_t> planes;
     for (std::size_t k = 0; k < sd.Objects.size(); ++k)

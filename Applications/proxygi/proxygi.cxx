@@ -47,7 +47,7 @@ double NumberOption(const Args& args, const std::string& name, double fallback, 
   const double v = std::strtod(text.c_str(), &end);
   if (errno != 0 || end == text.c_str() || *end != '\0')
   {
-    std::fprintf(stderr, "proxygi: %s expects a number, got '%s'\n", name.c_str(), text.c_str());
+    vtkLogF(ERROR, "proxygi: %s expects a number, got '%s'", name.c_str(), text.c_str());
     ok = false;
   }
   return v;
@@ -119,10 +119,21 @@ Commands:
   proxygi --help | --version
 
 Every command takes --quiet (errors only, no progress) and --verbose (VTK's
-log down to trace level); by default notices (INFO) are shown.
+log down to trace level, in vtkLogger's own format); by default errors,
+warnings and notices are shown, one line each ("warning: ", "info: ").
 Exit codes: 0 done, 1 failed (input, data, rendering or writing), 2 bad
 arguments or unknown command, 130 interrupted (Ctrl-C).
 )";
+
+// The program's messages (its own and VTK's, all through vtkLogger) as plain
+// lines: errors as they are ("proxygi render: ..."), the rest tagged.
+void PrintMessage(void*, const vtkLogger::Message& message)
+{
+  const char* tag = message.verbosity <= vtkLogger::VERBOSITY_ERROR ? ""
+    : message.verbosity == vtkLogger::VERBOSITY_WARNING             ? "warning: "
+                                                                    : "info: ";
+  std::fprintf(stderr, "%s%s%s\n", tag, message.prefix, message.message);
+}
 
 int RunBench(const char* self, const proxygi::cli::Args& args)
 {
@@ -133,8 +144,8 @@ int RunBench(const char* self, const proxygi::cli::Args& args)
     (slash == std::string::npos ? std::string(".") : path.substr(0, slash)) + "/ProxyGIBenchSH";
   if (access(path.c_str(), X_OK) != 0)
   {
-    std::fprintf(stderr,
-      "proxygi bench: %s not found (configure with PROXYGI_BUILD_BENCHMARKS=ON)\n", path.c_str());
+    vtkLogF(ERROR, "proxygi bench: %s not found (configure with PROXYGI_BUILD_BENCHMARKS=ON)",
+      path.c_str());
     return 1;
   }
   std::vector<char*> argv;
@@ -145,7 +156,7 @@ int RunBench(const char* self, const proxygi::cli::Args& args)
   }
   argv.push_back(nullptr);
   execv(path.c_str(), argv.data());
-  std::fprintf(stderr, "proxygi bench: cannot run %s: %s\n", path.c_str(), std::strerror(errno));
+  vtkLogF(ERROR, "proxygi bench: cannot run %s: %s", path.c_str(), std::strerror(errno));
   return 1;
 }
 } // namespace
@@ -170,22 +181,31 @@ int main(int argc, char* argv[])
   // --quiet and --verbose apply to every command: they set how much of
   // vtkLogger's output (VTK's warnings and errors included) reaches stderr.
   proxygi::cli::Args args;
-  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_INFO);
+  vtkLogger::Verbosity shown = vtkLogger::VERBOSITY_INFO;
   for (int k = 2; k < argc; ++k)
   {
     if (!std::strcmp(argv[k], "--quiet"))
     {
-      vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_ERROR);
+      shown = vtkLogger::VERBOSITY_ERROR;
       proxygi::cli::SetProgressShown(false);
     }
     else if (!std::strcmp(argv[k], "--verbose"))
     {
-      vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_TRACE);
+      shown = vtkLogger::VERBOSITY_TRACE;
     }
     else
     {
       args.emplace_back(argv[k]);
     }
+  }
+  if (shown == vtkLogger::VERBOSITY_TRACE)
+  {
+    vtkLogger::SetStderrVerbosity(shown); // vtkLogger's own lines: time, thread, file:line
+  }
+  else
+  {
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+    vtkLogger::AddCallback("proxygi-stderr", PrintMessage, nullptr, shown);
   }
   if (command == "--version")
   {
@@ -220,6 +240,7 @@ int main(int argc, char* argv[])
   {
     return proxygi::cli::RunView(args);
   }
-  std::fprintf(stderr, "proxygi: unknown command '%s'\n\n%s", command.c_str(), Usage);
+  vtkLogF(ERROR, "proxygi: unknown command '%s'", command.c_str());
+  std::fputs(Usage, stderr);
   return 2;
 }

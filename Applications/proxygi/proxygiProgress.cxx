@@ -3,6 +3,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkLogger.h"
 #include "vtkNew.h"
 
 #include <algorithm>
@@ -150,7 +151,7 @@ bool HasExtension(const std::string& command, const std::string& option, const s
   {
     list += (k == 0 ? "" : (k + 1 == extensions.size() ? " or " : ", ")) + extensions[k];
   }
-  std::fprintf(stderr, "proxygi %s: %s '%s' must end in %s\n", command.c_str(), option.c_str(),
+  vtkLogF(ERROR, "proxygi %s: %s '%s' must end in %s", command.c_str(), option.c_str(),
     path.c_str(), list.c_str());
   return false;
 }
@@ -171,7 +172,7 @@ bool WriteThenRename(const std::string& path, const std::function<bool(const std
   }
   if (std::rename(temporary.c_str(), path.c_str()) != 0)
   {
-    std::fprintf(stderr, "proxygi: cannot rename '%s' to '%s'\n", temporary.c_str(), path.c_str());
+    vtkLogF(ERROR, "proxygi: cannot rename '%s' to '%s'", temporary.c_str(), path.c_str());
     std::remove(temporary.c_str());
     return false;
   }

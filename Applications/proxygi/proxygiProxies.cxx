@@ -11,6 +11,7 @@
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -73,8 +74,8 @@ public:
     {
       message.pop_back();
     }
-    std::fprintf(stderr, "proxygi proxies: %s: %s\n",
-      event == vtkCommand::ErrorEvent ? "error" : "warning", message.c_str());
+    vtkLogF(ERROR, "proxygi proxies: %s: %s", event == vtkCommand::ErrorEvent ? "error" : "warning",
+      message.c_str());
     this->Errors += event == vtkCommand::ErrorEvent;
   }
   int Errors = 0;
@@ -102,7 +103,7 @@ int RunProxies(const Args& args)
     }
     if (!args[i].empty() && args[i][0] == '-')
     {
-      std::fprintf(stderr, "proxygi proxies: unknown option '%s'\n", args[i].c_str());
+      vtkLogF(ERROR, "proxygi proxies: unknown option '%s'", args[i].c_str());
       return 2;
     }
     if (!mesh.empty())
@@ -115,7 +116,8 @@ int RunProxies(const Args& args)
   }
   if (mesh.empty())
   {
-    std::fprintf(stderr, "proxygi proxies: no mesh given\n\n%s", Usage);
+    vtkLogF(ERROR, "proxygi proxies: no mesh given");
+    std::fputs(Usage, stderr);
     return 2;
   }
   bool ok = true;
@@ -144,7 +146,7 @@ int RunProxies(const Args& args)
   }
   if (method < 0)
   {
-    std::fprintf(stderr, "proxygi proxies: --method is variational, octree or kmeans, not '%s'\n",
+    vtkLogF(ERROR, "proxygi proxies: --method is variational, octree or kmeans, not '%s'",
       methodName.c_str());
     return 2;
   }
@@ -152,9 +154,9 @@ int RunProxies(const Args& args)
     !(seed >= 0 && seed <= 4294967295.0 && std::floor(seed) == seed) ||
     !(iterations >= 1 && iterations <= 1e6) || !(resolution >= 8 && resolution <= 4096))
   {
-    std::fprintf(stderr,
+    vtkLogF(ERROR,
       "proxygi proxies: need 1 <= N, E >= 0, 0 <= seed < 2^32, "
-      "1 <= iterations, 8 <= resolution <= 4096\n");
+      "1 <= iterations, 8 <= resolution <= 4096");
     return 2;
   }
   std::string output = Option(args, "-o", "");
@@ -186,7 +188,7 @@ int RunProxies(const Args& args)
   }
   else
   {
-    std::fprintf(stderr, "proxygi proxies: '%s' is neither .off nor .vtp\n", mesh.c_str());
+    vtkLogF(ERROR, "proxygi proxies: '%s' is neither .off nor .vtp", mesh.c_str());
     return 2;
   }
   reader->AddObserver(vtkCommand::ErrorEvent, reporter);
@@ -194,7 +196,7 @@ int RunProxies(const Args& args)
   vtkPolyData* input = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   if (reporter->Errors || !input || input->GetNumberOfPoints() == 0)
   {
-    std::fprintf(stderr, "proxygi proxies: cannot read a mesh from '%s'\n", mesh.c_str());
+    vtkLogF(ERROR, "proxygi proxies: cannot read a mesh from '%s'", mesh.c_str());
     return 1;
   }
 
@@ -261,7 +263,7 @@ int RunProxies(const Args& args)
     });
   if (!written)
   {
-    std::fprintf(stderr, "proxygi proxies: cannot write '%s'\n", output.c_str());
+    vtkLogF(ERROR, "proxygi proxies: cannot write '%s'", output.c_str());
     return 1;
   }
   std::printf("wrote %lld spheres to %s\n", static_cast<long long>(proxies->GetNumberOfPoints()),

@@ -14,6 +14,7 @@
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -84,7 +85,7 @@ int RunReference(const Args& args)
   }
   if (spp < 1 || bounces < 0 || bounces > 64)
   {
-    std::fprintf(stderr, "proxygi reference: need --spp >= 1 and 0 <= --bounces <= 64\n");
+    vtkLogF(ERROR, "proxygi reference: need --spp >= 1 and 0 <= --bounces <= 64");
     return 2;
   }
   // The output names first: a wrong extension is refused before the work.
@@ -103,19 +104,19 @@ int RunReference(const Args& args)
   std::string error;
   if (!scenePath.empty() && !LoadScene(scenePath, scene, error))
   {
-    std::fprintf(stderr, "proxygi reference: %s\n", error.c_str());
+    vtkLogF(ERROR, "proxygi reference: %s", error.c_str());
     return 1;
   }
   const std::string size = Option(args, "--size", "");
   if (!size.empty() && std::sscanf(size.c_str(), "%dx%d", &scene.Size[0], &scene.Size[1]) != 2)
   {
-    std::fprintf(stderr, "proxygi reference: --size expects WxH, e.g. 512x512\n");
+    vtkLogF(ERROR, "proxygi reference: --size expects WxH, e.g. 512x512");
     return 2;
   }
   LoadedScene loaded;
   if (!BuildScene(scene, loaded, error))
   {
-    std::fprintf(stderr, "proxygi reference: %s\n", error.c_str());
+    vtkLogF(ERROR, "proxygi reference: %s", error.c_str());
     return 1;
   }
   vtkSmartPointer<vtkPolyData> proxies;
@@ -128,7 +129,7 @@ int RunReference(const Args& args)
     proxies = reader->GetOutput();
     if (!proxies || proxies->GetNumberOfPoints() == 0)
     {
-      std::fprintf(stderr, "proxygi reference: no proxies in '%s'\n", proxiesPath.c_str());
+      vtkLogF(ERROR, "proxygi reference: no proxies in '%s'", proxiesPath.c_str());
       return 1;
     }
   }
@@ -174,7 +175,7 @@ int RunReference(const Args& args)
     vtkPolyData* out = reference->GetOutput();
     if (out->GetNumberOfPoints() == 0)
     {
-      std::fprintf(stderr, "proxygi reference: the reference failed (see the errors above)\n");
+      vtkLogF(ERROR, "proxygi reference: the reference failed (see the errors above)");
       return 1;
     }
     const double seconds = ElapsedSeconds(start);
@@ -192,7 +193,7 @@ int RunReference(const Args& args)
       });
     if (!written)
     {
-      std::fprintf(stderr, "proxygi reference: cannot write %s\n", perVertex.c_str());
+      vtkLogF(ERROR, "proxygi reference: cannot write %s", perVertex.c_str());
       return 1;
     }
     std::printf("per vertex: %lld receivers, %d samples, %d bounce(s), %d threads\n",
@@ -242,7 +243,7 @@ int RunReference(const Args& args)
   vtkImageData* radiance = image->GetOutput();
   if (radiance->GetNumberOfPoints() == 0)
   {
-    std::fprintf(stderr, "proxygi reference: the reference failed (see the errors above)\n");
+    vtkLogF(ERROR, "proxygi reference: the reference failed (see the errors above)");
     return 1;
   }
   const double seconds = ElapsedSeconds(start);
@@ -269,7 +270,7 @@ int RunReference(const Args& args)
     });
   if (!written)
   {
-    std::fprintf(stderr, "proxygi reference: cannot write %s\n", exr.c_str());
+    vtkLogF(ERROR, "proxygi reference: cannot write %s", exr.c_str());
     return 1;
   }
   std::printf("per pixel: %dx%d, %d samples, %d bounce(s), %d threads\n", scene.Size[0],
@@ -283,7 +284,7 @@ int RunReference(const Args& args)
     if (!WriteThenRename(png,
           [&](const std::string& file) { return WriteTonemappedPNG(radiance, exposure, file); }))
     {
-      std::fprintf(stderr, "proxygi reference: cannot write %s\n", png.c_str());
+      vtkLogF(ERROR, "proxygi reference: cannot write %s", png.c_str());
       return 1;
     }
     std::printf("wrote %s (exposure %.3g)\n", png.c_str(), exposure);

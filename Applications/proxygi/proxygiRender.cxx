@@ -11,6 +11,7 @@
 #include "pgiSHZonal.h"
 
 #include <vtkImageData.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkSMPTools.h>
@@ -152,16 +153,16 @@ int RunRenderAnalytic(const Args& args)
   }
   else
   {
-    std::fprintf(stderr, "proxygi render: unknown --method '%s'\n", methodName.c_str());
+    vtkLogF(ERROR, "proxygi render: unknown --method '%s'", methodName.c_str());
     return 2;
   }
   if (size < 8 || size > 8192 || order < 2 || order > MaxOrder || !(scene.Radius > 0.0) ||
     !(scene.Height >= scene.Radius) || !(scene.Albedo >= 0.0 && scene.Albedo <= 1.0) ||
     !(scene.Extent > 0.0) || degree < 1 || degree > 16)
   {
-    std::fprintf(stderr,
+    vtkLogF(ERROR,
       "proxygi render: need 8 <= size <= 8192, 2 <= order <= %d, radius > 0, height >= radius, "
-      "0 <= albedo <= 1, extent > 0, 1 <= degree <= 16\n",
+      "0 <= albedo <= 1, extent > 0, 1 <= degree <= 16",
       MaxOrder);
     return 2;
   }
@@ -249,7 +250,7 @@ int RunRenderAnalytic(const Args& args)
   writer->Write();
   if (writer->GetErrorCode() != 0)
   {
-    std::fprintf(stderr, "proxygi render: could not write %s\n", output.c_str());
+    vtkLogF(ERROR, "proxygi render: could not write %s", output.c_str());
     return 1;
   }
 

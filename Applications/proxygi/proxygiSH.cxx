@@ -8,6 +8,8 @@
 #include "pgiSHTables.h"
 #include "pgiSHZonal.h"
 
+#include <vtkLogger.h>
+
 #include <cstdio>
 #include <vector>
 
@@ -60,12 +62,12 @@ int RunSH(const Args& args)
   }
   if (order < 1 || order > MaxOrder)
   {
-    std::fprintf(stderr, "proxygi sh: --order must lie in 1..%d\n", MaxOrder);
+    vtkLogF(ERROR, "proxygi sh: --order must lie in 1..%d", MaxOrder);
     return 2;
   }
   if (!(degrees >= 0.0 && degrees <= 90.0))
   {
-    std::fprintf(stderr, "proxygi sh: --cap must lie in 0..90 degrees\n");
+    vtkLogF(ERROR, "proxygi sh: --cap must lie in 0..90 degrees");
     return 2;
   }
   const double theta = degrees * Pi / 180.0;
@@ -91,7 +93,7 @@ int RunSH(const Args& args)
     }
     else
     {
-      std::fprintf(stderr, "proxygi sh: unknown function '%s'\n", function.c_str());
+      vtkLogF(ERROR, "proxygi sh: unknown function '%s'", function.c_str());
       return 2;
     }
     Project(order, fn, SphereQuadrature(256), g.data());
@@ -108,7 +110,7 @@ int RunSH(const Args& args)
   const Status s = Log(order, g.data(), f.data());
   if (s != Status::Ok)
   {
-    std::fprintf(stderr, "proxygi sh: log failed: %s\n", StatusString(s));
+    vtkLogF(ERROR, "proxygi sh: log failed: %s", StatusString(s));
     return 1;
   }
   std::printf("order %d, blocker of angular radius %.2f degrees along +z\n", order, degrees);

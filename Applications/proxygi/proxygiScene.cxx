@@ -23,6 +23,7 @@
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
@@ -106,14 +107,14 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
       o.ReceiverScale != 8) ||
     o.PixelSpp < 1)
   {
-    std::fprintf(stderr,
+    vtkLogF(ERROR,
       "proxygi render: --mode gpu|vertex|image-space, --scale 1|2|4|8, "
-      "--pixel-reference-spp >= 1\n");
+      "--pixel-reference-spp >= 1");
     return false;
   }
   if (o.IndirectName != "shadowed" && o.IndirectName != "unshadowed" && o.IndirectName != "off")
   {
-    std::fprintf(stderr, "proxygi render: --indirect shadowed|unshadowed|off\n");
+    vtkLogF(ERROR, "proxygi render: --indirect shadowed|unshadowed|off");
     return false;
   }
   const std::map<std::string, int> methods = { { "PS", vtkPGIGISettings::EXP_PS },
@@ -122,9 +123,9 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   if (!methods.count(o.MethodName) || o.Order < 2 || o.Order > 8 || o.Spheres < 1 ||
     o.ReferenceSpp < 1 || o.HierarchyAngle < 0.0 || o.HierarchyAngle > 89.0)
   {
-    std::fprintf(stderr,
+    vtkLogF(ERROR,
       "proxygi render: need --method HYB|OL|PS*|PS, 2 <= --order <= 8, "
-      "--spheres >= 1, --reference-spp >= 1, 0 <= --hierarchy <= 89\n");
+      "--spheres >= 1, --reference-spp >= 1, 0 <= --hierarchy <= 89");
     return false;
   }
   o.ExpMethod = methods.at(o.MethodName);
@@ -237,7 +238,7 @@ bool ReadBackGPU(vtkRenderWindow* window,
     vtkNew<vtkFloatArray> radiance;
     if (!mappers[k]->GetPerVertexResults(radiance))
     {
-      std::fprintf(stderr, "proxygi render: the GPU GI pass did not run (%s)\n",
+      vtkLogF(ERROR, "proxygi render: the GPU GI pass did not run (%s)",
         mappers[k]->GetGIStatus().c_str());
       return false;
     }
@@ -301,19 +302,19 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   std::string error;
   if (!scenePath.empty() && !LoadScene(scenePath, scene, error))
   {
-    std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
+    vtkLogF(ERROR, "proxygi render: %s", error.c_str());
     return 1;
   }
   const std::string size = Option(args, "--size", "");
   if (!size.empty() && std::sscanf(size.c_str(), "%dx%d", &scene.Size[0], &scene.Size[1]) != 2)
   {
-    std::fprintf(stderr, "proxygi render: --size expects WxH\n");
+    vtkLogF(ERROR, "proxygi render: --size expects WxH");
     return 2;
   }
   LoadedScene loaded;
   if (!BuildScene(scene, loaded, error))
   {
-    std::fprintf(stderr, "proxygi render: %s\n", error.c_str());
+    vtkLogF(ERROR, "proxygi render: %s", error.c_str());
     return 1;
   }
   std::printf("scene: %s\n", scene.Name.c_str());
@@ -322,7 +323,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   SetupProgress progress("proxygi render");
   if (!BuildSceneProxies(scene, loaded, o.Spheres, o.Cache, proxies, error, &progress))
   {
-    std::fprintf(stderr, "proxygi render: %s%s\n", error.c_str(),
+    vtkLogF(ERROR, "proxygi render: %s%s", error.c_str(),
       progress.Interrupted() ? "; nothing written, nothing cached" : "");
     return progress.Interrupted() ? InterruptedExitCode : 1;
   }
@@ -373,7 +374,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   vtkSmartPointer<vtkRenderWindow> window = NewOffscreenRenderWindow(&windowPath);
   if (!window)
   {
-    std::fprintf(stderr, "proxygi render: no offscreen OpenGL: %s\n", windowPath.c_str());
+    vtkLogF(ERROR, "proxygi render: no offscreen OpenGL: %s", windowPath.c_str());
     return 1;
   }
   window->SetSize(scene.Size[0], scene.Size[1]);
@@ -446,7 +447,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
         tracer->Update();
         if (traced.Interrupted())
         {
-          std::fprintf(stderr, "proxygi render: interrupted; Embree's image was not cached\n");
+          vtkLogF(ERROR, "proxygi render: interrupted; Embree's image was not cached");
           return InterruptedExitCode;
         }
       }
@@ -545,7 +546,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       scene, loaded, receiversIn, referenceSpp, cache, nullptr, seconds, error, 1, true, &progress);
     if (reference.empty())
     {
-      std::fprintf(stderr, "proxygi render: %s%s\n", error.c_str(),
+      vtkLogF(ERROR, "proxygi render: %s%s", error.c_str(),
         progress.Interrupted() ? "; the reference was not cached" : "");
       return progress.Interrupted() ? InterruptedExitCode : 1;
     }

@@ -8,6 +8,7 @@
 #include "vtkPGILighting.h"
 #include "vtkPGIOFFReader.h"
 
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -105,7 +106,7 @@ int RunShade(const Args& args)
   gi->Update();
   if (gi->GetOutput()->GetNumberOfPoints() == 0)
   {
-    std::fprintf(stderr, "proxygi shade: the GI filter failed (see the messages above)\n");
+    vtkLogF(ERROR, "proxygi shade: the GI filter failed (see the messages above)");
     return 1;
   }
   for (const std::string& line : gi->GetPlan())

@@ -943,7 +943,7 @@ bool ParseViewOptions(const Args& args, ViewOptions& o, SceneDescription& scene)
   }
   else
   {
-    std::fprintf(stderr, "proxygi view: --mode gpu|vertex|image-space\n");
+    vtkLogF(ERROR, "proxygi view: --mode gpu|vertex|image-space");
     return false;
   }
   if (o.Order < 2 || o.Order > 8 || o.Spheres < 4 || o.Spheres > 1024 || o.ReferenceSpp < 1 ||
@@ -951,9 +951,9 @@ bool ParseViewOptions(const Args& args, ViewOptions& o, SceneDescription& scene)
       o.ReceiverScale != 8) ||
     o.Exposure < 0.0)
   {
-    std::fprintf(stderr,
+    vtkLogF(ERROR,
       "proxygi view: need 2 <= --order <= 8, 4 <= --spheres <= 1024, --reference-spp >= 1, "
-      "--scale 1|2|4|8, --exposure >= 0\n");
+      "--scale 1|2|4|8, --exposure >= 0");
     return false;
   }
   const std::string size = Option(args, "--size", "");
@@ -961,7 +961,7 @@ bool ParseViewOptions(const Args& args, ViewOptions& o, SceneDescription& scene)
     (std::sscanf(size.c_str(), "%dx%d", &scene.Size[0], &scene.Size[1]) != 2 ||
       scene.Size[0] < 16 || scene.Size[1] < 16))
   {
-    std::fprintf(stderr, "proxygi view: --size expects WxH (at least 16x16)\n");
+    vtkLogF(ERROR, "proxygi view: --size expects WxH (at least 16x16)");
     return false;
   }
   return true;
@@ -981,7 +981,7 @@ int RunView(const Args& args)
   std::string error;
   if (!scenePath.empty() && !LoadScene(scenePath, scene, error))
   {
-    std::fprintf(stderr, "proxygi view: %s\n", error.c_str());
+    vtkLogF(ERROR, "proxygi view: %s", error.c_str());
     return 1;
   }
   ViewOptions options;
@@ -992,9 +992,9 @@ int RunView(const Args& args)
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
   {
-    std::fprintf(stderr,
+    vtkLogF(ERROR,
       "proxygi view: needs an X display (DISPLAY is not set); run it under xvfb-run for "
-      "an offscreen one, or use 'proxygi render' for a picture\n");
+      "an offscreen one, or use 'proxygi render' for a picture");
     return 1;
   }
   Viewer viewer(scene, options);
