@@ -1,10 +1,13 @@
 #include "proxygiImage.h"
+#include "proxygiProgress.h"
 
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
 #include <cmath>
@@ -54,11 +57,33 @@ bool WriteTonemappedPNG(vtkImageData* radiance, double exposure, const std::stri
       out[3 * i + c] = ToSRGB8(exposure * rgb->GetComponent(i, c));
     }
   }
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(image);
-  writer->Write();
-  return writer->GetErrorCode() == 0;
+  return WritePNG(image, path);
+}
+
+bool WritePNG(vtkImageData* image, const std::string& path)
+{
+  return WriteThenRename(path,
+    [&](const std::string& temporary)
+    {
+      vtkNew<vtkPNGWriter> writer;
+      writer->SetFileName(temporary.c_str());
+      writer->SetInputData(image);
+      writer->Write();
+      return writer->GetErrorCode() == 0;
+    });
+}
+
+bool WritePolyData(vtkPolyData* data, const std::string& path)
+{
+  return WriteThenRename(path,
+    [&](const std::string& temporary)
+    {
+      vtkNew<vtkXMLPolyDataWriter> writer;
+      writer->SetFileName(temporary.c_str());
+      writer->SetInputData(data);
+      writer->SetDataModeToAppended();
+      return writer->Write() == 1;
+    });
 }
 
 } // namespace cli

@@ -8,6 +8,7 @@
 #include <vector>
 
 class vtkImageData;
+class vtkPolyData;
 
 namespace proxygi
 {
@@ -19,6 +20,12 @@ namespace cli
 double AutoExposure(std::vector<double>& luminance);
 /// The same for a float RGB radiance image (point scalars).
 double AutoExposure(vtkImageData* radiance);
+
+/// Writes `image` (bytes) as a PNG, under a temporary name then renamed;
+/// false (and no file) on failure.
+bool WritePNG(vtkImageData* image, const std::string& path);
+/// Writes `data` as a .vtp (appended binary) the same way.
+bool WritePolyData(vtkPolyData* data, const std::string& path);
 
 /// Writes a float RGB radiance image (point scalars) as an sRGB PNG.
 bool WriteTonemappedPNG(vtkImageData* radiance, double exposure, const std::string& path);

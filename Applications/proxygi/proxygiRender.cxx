@@ -5,6 +5,7 @@
 // below any plane point's horizon when its height >= its radius.
 #include "proxygiCommands.h"
 #include "proxygiImage.h"
+#include "proxygiProgress.h"
 
 #include "pgiSHExp.h"
 #include "pgiSHTables.h"
@@ -129,7 +130,7 @@ int RunRenderAnalytic(const Args& args)
   scene.Extent = NumberOption(args, "--extent", scene.Extent, ok);
   const std::string output = Option(args, "-o", "proxygi-render.png");
   const std::string methodName = Option(args, "--method", "HYB");
-  if (!ok)
+  if (!ok || !HasExtension("render", "-o", output, { ".png" }))
   {
     return 2;
   }
@@ -244,11 +245,7 @@ int RunRenderAnalytic(const Args& args)
     unsigned char* out = rgb + 3 * (row * size + col);
     out[0] = out[1] = out[2] = ToSRGB8(shaded[p]);
   }
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(output.c_str());
-  writer->SetInputData(image);
-  writer->Write();
-  if (writer->GetErrorCode() != 0)
+  if (!WritePNG(image, output))
   {
     vtkLogF(ERROR, "proxygi render: could not write %s", output.c_str());
     return 1;

@@ -97,6 +97,12 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   o.Vtp = Option(args, "--vtp", "");
   o.ReferencePNG = Option(args, "--reference-png", "");
   o.NoError = Flag(args, "--no-error");
+  if (!HasExtension("render", "-o", o.Output, { ".png" }) ||
+    (!o.ReferencePNG.empty() &&
+      !HasExtension("render", "--reference-png", o.ReferencePNG, { ".png" })))
+  {
+    return false;
+  }
   o.PixelError = o.ImageSpace() || Flag(args, "--pixel-error");
   if (!ok)
   {
@@ -406,10 +412,12 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   grab->SetInput(window);
   grab->SetInputBufferTypeToRGB();
   grab->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> png;
-  png->SetFileName(o.Output.c_str());
-  png->SetInputConnection(grab->GetOutputPort());
-  png->Write();
+  grab->Update();
+  if (!WritePNG(grab->GetOutput(), o.Output))
+  {
+    vtkLogF(ERROR, "proxygi render: cannot write %s", o.Output.c_str());
+    return 1;
+  }
   const auto t3 = Clock::now();
   std::printf("window: %s\n", DescribeRenderWindowContext(window).c_str());
   const int pixelSpp = o.PixelSpp;
@@ -508,11 +516,12 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
 
   for (std::size_t k = 0; !o.Vtp.empty() && k < shaded.size(); ++k)
   {
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName((o.Vtp + "-" + scene.Objects[k].Name + ".vtp").c_str());
-    writer->SetInputData(shaded[k]);
-    writer->SetDataModeToAppended();
-    writer->Write();
+    const std::string path = o.Vtp + "-" + scene.Objects[k].Name + ".vtp";
+    if (!WritePolyData(shaded[k], path))
+    {
+      vtkLogF(ERROR, "proxygi render: cannot write %s", path.c_str());
+      return 1;
+    }
   }
   // What ran (the effective settings of this mode's backend).
   std::printf("settings: mode %s, SH order %d, exp %s, indirect %s, %lld proxy spheres, %zu "

@@ -2,6 +2,8 @@
 // mesh and a proxies file, with the classes' defaults unless told: the plain
 // C++ answer the ParaView plugin's Global Illumination is compared with.
 #include "proxygiCommands.h"
+#include "proxygiImage.h"
+#include "proxygiProgress.h"
 
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
@@ -75,6 +77,10 @@ int RunShade(const Args& args)
     }
     files.push_back(args[i]);
   }
+  if (!HasExtension("shade", "-o", output, { ".vtp" }))
+  {
+    return 2;
+  }
   if (!ok || files.size() != 2 || order < 2 || order > 8 ||
     (indirect != "unshadowed" && indirect != "shadowed" && indirect != "off"))
   {
@@ -113,10 +119,11 @@ int RunShade(const Args& args)
   {
     std::printf("plan: %s\n", line.c_str());
   }
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetFileName(output.c_str());
-  writer->SetInputData(gi->GetOutput());
-  writer->Write();
+  if (!WritePolyData(gi->GetOutput(), output))
+  {
+    vtkLogF(ERROR, "proxygi shade: cannot write %s", output.c_str());
+    return 1;
+  }
   std::printf("wrote %s (%lld receivers)\n", output.c_str(),
     static_cast<long long>(receivers->GetNumberOfPoints()));
   return 0;

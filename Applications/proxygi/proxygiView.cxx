@@ -758,16 +758,7 @@ void Viewer::Screenshot()
   grab->SetInputBufferTypeToRGB();
   grab->ReadFrontBufferOff();
   grab->Update();
-  const bool ok = WriteThenRename(path,
-    [&](const std::string& temporary)
-    {
-      vtkNew<vtkPNGWriter> png;
-      png->SetFileName(temporary.c_str());
-      png->SetInputConnection(grab->GetOutputPort());
-      png->Write();
-      return png->GetErrorCode() == 0;
-    });
-  if (ok)
+  if (WritePNG(grab->GetOutput(), path))
   {
     std::printf("wrote %s\n", path.c_str());
     std::fflush(stdout);
