@@ -4,6 +4,8 @@
 #include "proxygiCommands.h"
 #include "proxygiProgress.h"
 
+#include "pgiOffscreenWindow.h"
+
 #include "vtkLogger.h"
 
 #include <vtkSMPTools.h>
@@ -118,7 +120,9 @@ Commands:
 
   proxygi --help | --version
 
-Every command takes --quiet (errors only, no progress) and --verbose (VTK's
+Every command takes --offscreen egl|glx|osmesa (the offscreen OpenGL path;
+PROXYGI_OFFSCREEN does the same; osmesa restarts the program with libOSMesa
+preloaded), --quiet (errors only, no progress) and --verbose (VTK's
 log down to trace level, in vtkLogger's own format); by default errors,
 warnings and notices are shown, one line each ("warning: ", "info: ").
 Exit codes: 0 done, 1 failed (input, data, rendering or writing), 2 bad
@@ -193,6 +197,10 @@ int main(int argc, char* argv[])
     {
       shown = vtkLogger::VERBOSITY_TRACE;
     }
+    else if (!std::strcmp(argv[k], "--offscreen") && k + 1 < argc)
+    {
+      setenv("PROXYGI_OFFSCREEN", argv[++k], 1);
+    }
     else
     {
       args.emplace_back(argv[k]);
@@ -206,6 +214,15 @@ int main(int argc, char* argv[])
   {
     vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
     vtkLogger::AddCallback("proxygi-stderr", PrintMessage, nullptr, shown);
+  }
+  // OSMesa under Debian's X-only VTK needs libOSMesa ahead of libGL: the
+  // program starts again with it preloaded (see vtkPGIOSMesaRenderWindow).
+  std::string preloadError;
+  proxygi::PreloadOSMesaIfAsked(argv, &preloadError);
+  if (!preloadError.empty())
+  {
+    vtkLogF(ERROR, "proxygi: OSMesa: %s", preloadError.c_str());
+    return 1;
   }
   if (command == "--version")
   {

@@ -419,7 +419,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     return 1;
   }
   const auto t3 = Clock::now();
-  std::printf("window: %s\n", DescribeRenderWindowContext(window).c_str());
+  std::printf("window: %s\n", windowPath.c_str());
   const int pixelSpp = o.PixelSpp;
   const std::string& cache = o.Cache;
 

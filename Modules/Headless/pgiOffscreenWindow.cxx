@@ -10,12 +10,17 @@
 #include "vtkPGIEGLRenderWindow.h"
 #endif
 #if defined(VTK_OPENGL_HAS_OSMESA) && __has_include("vtkOSOpenGLRenderWindow.h")
-#define PROXYGI_HEADLESS_HAS_OSMESA 1
+#define PROXYGI_HEADLESS_VTK_OSMESA 1
 #include "vtkOSOpenGLRenderWindow.h"
+#endif
+#ifdef PROXYGI_HEADLESS_HAS_OSMESA
+#include "vtkPGIOSMesaRenderWindow.h"
 #endif
 
 #include <dlfcn.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -29,7 +34,10 @@ namespace proxygi
 namespace
 {
 // Whether an X server answers on DISPLAY, asked through libX11 at run time
-// (no X headers or link needed for the EGL-only case).
+// (no X headers or link needed for the EGL-only case). The connection stays
+// open: an X server without -noreset (Xvfb as xvfb-run starts it) resets
+// when its last client leaves, and VTK's window, opened during that reset,
+// fails with "bad X server connection".
 bool XServerAnswers()
 {
   const char* display = std::getenv("DISPLAY");
@@ -37,26 +45,28 @@ bool XServerAnswers()
   {
     return false;
   }
+  static void* kept = nullptr;
+  static std::string keptFor;
+  if (kept && keptFor == display)
+  {
+    return true;
+  }
   void* x11 = dlopen("libX11.so.6", RTLD_LAZY | RTLD_LOCAL);
   if (!x11)
   {
     return false;
   }
   using OpenDisplay = void* (*)(const char*);
-  using CloseDisplay = int (*)(void*);
   auto open = reinterpret_cast<OpenDisplay>(dlsym(x11, "XOpenDisplay"));
-  auto close = reinterpret_cast<CloseDisplay>(dlsym(x11, "XCloseDisplay"));
-  bool ok = false;
-  if (open && close)
+  void* connection = open ? open(nullptr) : nullptr;
+  if (!connection)
   {
-    if (void* d = open(nullptr))
-    {
-      close(d);
-      ok = true;
-    }
+    dlclose(x11);
+    return false;
   }
-  dlclose(x11);
-  return ok;
+  kept = connection; // libX11 stays loaded with it
+  keptFor = display;
+  return true;
 }
 
 vtkSmartPointer<vtkRenderWindow> Configure(vtkSmartPointer<vtkRenderWindow> window)
@@ -68,6 +78,62 @@ vtkSmartPointer<vtkRenderWindow> Configure(vtkSmartPointer<vtkRenderWindow> wind
 }
 } // namespace
 
+bool GlewShimActive()
+{
+  // The shim exports pgiGlewShimCalls; the glewInit the process resolves must
+  // live in the same object as that marker.
+  void* marker = dlsym(RTLD_DEFAULT, "pgiGlewShimCalls");
+  void* glewInitAddress = dlsym(RTLD_DEFAULT, "glewInit");
+  if (!marker || !glewInitAddress)
+  {
+    return false;
+  }
+  Dl_info a, b;
+  if (!dladdr(marker, &a) || !dladdr(glewInitAddress, &b))
+  {
+    return false;
+  }
+  return a.dli_fbase == b.dli_fbase;
+}
+
+void PreloadOSMesaIfAsked(char* argv[], std::string* error)
+{
+  const char* asked = std::getenv("PROXYGI_OFFSCREEN");
+  if (!asked || std::strcmp(asked, "osmesa") != 0)
+  {
+    return;
+  }
+#if defined(PROXYGI_HEADLESS_HAS_OSMESA) && !defined(PROXYGI_HEADLESS_VTK_OSMESA)
+  if (vtkPGIOSMesaRenderWindow::OSMesaEntryPointsBound())
+  {
+    return;
+  }
+  if (std::getenv("PROXYGI_OSMESA_PRELOADED"))
+  {
+    if (error)
+    {
+      *error = "libOSMesa was preloaded but GL's entry points still bind elsewhere";
+    }
+    return;
+  }
+  std::string preload = vtkPGIOSMesaRenderWindow::GetOSMesaLibrary();
+  if (const char* previous = std::getenv("LD_PRELOAD"))
+  {
+    preload += std::string(":") + previous;
+  }
+  setenv("LD_PRELOAD", preload.c_str(), 1);
+  setenv("PROXYGI_OSMESA_PRELOADED", "1", 1);
+  execv("/proc/self/exe", argv);
+  if (error)
+  {
+    *error = std::string("could not re-execute with LD_PRELOAD: ") + std::strerror(errno);
+  }
+#else
+  (void)argv;
+  (void)error;
+#endif
+}
+
 std::string AvailableOffscreenPaths()
 {
   std::string paths;
@@ -77,7 +143,7 @@ std::string AvailableOffscreenPaths()
 #ifdef VTK_USE_X
   paths += "GLX ";
 #endif
-#ifdef PROXYGI_HEADLESS_HAS_OSMESA
+#if defined(PROXYGI_HEADLESS_VTK_OSMESA) || defined(PROXYGI_HEADLESS_HAS_OSMESA)
   paths += "OSMesa ";
 #endif
   if (!paths.empty())
@@ -102,6 +168,16 @@ std::string DescribeRenderWindowContext(vtkRenderWindow* window)
       return "no context: " + egl->GetContextError();
     }
     return egl->GetRendererDescription();
+  }
+#endif
+#ifdef PROXYGI_HEADLESS_HAS_OSMESA
+  if (auto* osmesa = vtkPGIOSMesaRenderWindow::SafeDownCast(window))
+  {
+    if (!osmesa->CreateContext())
+    {
+      return "no context: " + osmesa->GetContextError();
+    }
+    return osmesa->GetRendererDescription();
   }
 #endif
   gl->Initialize();
@@ -173,18 +249,33 @@ vtkSmartPointer<vtkRenderWindow> NewOffscreenRenderWindow(std::string* descripti
   }
 #endif
 
-#ifdef PROXYGI_HEADLESS_HAS_OSMESA
+#if defined(PROXYGI_HEADLESS_VTK_OSMESA)
   if (forced.empty() || forced == "osmesa")
   {
     vtkSmartPointer<vtkRenderWindow> osmesa = vtkSmartPointer<vtkOSOpenGLRenderWindow>::New();
     Configure(osmesa);
-    report("OSMesa: " + DescribeRenderWindowContext(osmesa));
+    report("OSMesa (VTK's window): " + DescribeRenderWindowContext(osmesa));
     return osmesa;
+  }
+#elif defined(PROXYGI_HEADLESS_HAS_OSMESA)
+  // Unasked, only where libOSMesa was preloaded (else it cannot work).
+  if (forced == "osmesa" || (forced.empty() && vtkPGIOSMesaRenderWindow::OSMesaEntryPointsBound()))
+  {
+    vtkSmartPointer<vtkPGIOSMesaRenderWindow> osmesa =
+      vtkSmartPointer<vtkPGIOSMesaRenderWindow>::New();
+    if (osmesa->CreateContext())
+    {
+      Configure(osmesa);
+      report("OSMesa (ProxyGI's window, libOSMesa preloaded): " + osmesa->GetRendererDescription());
+      return osmesa;
+    }
+    notes << "OSMesa: " << osmesa->GetContextError() << "; ";
   }
 #else
   if (forced == "osmesa")
   {
-    notes << "OSMesa: VTK was not built with it; ";
+    notes << "OSMesa: neither VTK nor this build has it (no GL/osmesa.h or libOSMesa at "
+             "configure time); ";
   }
 #endif
   std::string why = notes.str();

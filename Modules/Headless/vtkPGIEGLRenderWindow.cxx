@@ -1,5 +1,7 @@
 #include "vtkPGIEGLRenderWindow.h"
 
+#include "pgiOffscreenWindow.h"
+
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLState.h"
 #include "vtkRenderer.h"
@@ -164,20 +166,7 @@ void vtkPGIEGLRenderWindow::PrintSelf(ostream& os, vtkIndent indent)
 
 bool vtkPGIEGLRenderWindow::IsGlewShimActive()
 {
-  // The shim exports pgiGlewShimCalls; the glewInit the process resolves must
-  // live in the same object as that marker.
-  void* marker = dlsym(RTLD_DEFAULT, "pgiGlewShimCalls");
-  void* glewInitAddress = dlsym(RTLD_DEFAULT, "glewInit");
-  if (!marker || !glewInitAddress)
-  {
-    return false;
-  }
-  Dl_info a, b;
-  if (!dladdr(marker, &a) || !dladdr(glewInitAddress, &b))
-  {
-    return false;
-  }
-  return a.dli_fbase == b.dli_fbase;
+  return proxygi::GlewShimActive();
 }
 
 bool vtkPGIEGLRenderWindow::CreateContext()

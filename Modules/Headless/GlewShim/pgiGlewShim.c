@@ -9,6 +9,11 @@
  * to GLEW_OK. It must come before VTK's libraries in the program's lookup
  * order: link it first with -Wl,--no-as-needed (ProxyGI::Headless does so
  * through its interface link options). With GLX contexts it changes nothing.
+ *
+ * It also answers glXGetProcAddress(ARB), where GLEW looks its entry points
+ * up: while an OSMesa context is current (vtkPGIOSMesaRenderWindow) the
+ * addresses come from OSMesaGetProcAddress, since GLX's would dispatch to no
+ * context at all; otherwise GLX answers as before.
  */
 #define _GNU_SOURCE
 #include <dlfcn.h>
@@ -49,6 +54,51 @@ PGI_SHIM_EXPORT unsigned int glewInit(void)
     return PGI_GLEW_OK;
   }
   return result;
+}
+
+typedef void (*pgiProc)(void);
+typedef pgiProc (*pgiGetProcFunction)(const unsigned char*);
+typedef void* (*pgiCurrentFunction)(void);
+typedef pgiProc (*pgiOSMesaGetProcFunction)(const char*);
+
+static int pgiShimOSMesaLookups = 0;
+
+/* OSMesa's entry point when libOSMesa is loaded and one of its contexts is current. */
+static pgiProc pgiOSMesaProc(const unsigned char* name)
+{
+  pgiCurrentFunction current = (pgiCurrentFunction)dlsym(RTLD_DEFAULT, "OSMesaGetCurrentContext");
+  pgiOSMesaGetProcFunction get =
+    (pgiOSMesaGetProcFunction)dlsym(RTLD_DEFAULT, "OSMesaGetProcAddress");
+  if (!current || !get || !current())
+  {
+    return NULL;
+  }
+  ++pgiShimOSMesaLookups;
+  return get((const char*)name);
+}
+
+static pgiProc pgiGLXProc(const char* which, const unsigned char* name)
+{
+  pgiGetProcFunction real = (pgiGetProcFunction)dlsym(RTLD_NEXT, which);
+  return real ? real(name) : NULL;
+}
+
+PGI_SHIM_EXPORT pgiProc glXGetProcAddressARB(const unsigned char* name)
+{
+  pgiProc proc = pgiOSMesaProc(name);
+  return proc ? proc : pgiGLXProc("glXGetProcAddressARB", name);
+}
+
+PGI_SHIM_EXPORT pgiProc glXGetProcAddress(const unsigned char* name)
+{
+  pgiProc proc = pgiOSMesaProc(name);
+  return proc ? proc : pgiGLXProc("glXGetProcAddress", name);
+}
+
+/* How many entry points came from OSMesa (tests check the route was taken). */
+PGI_SHIM_EXPORT int pgiGlewShimOSMesaLookups(void)
+{
+  return pgiShimOSMesaLookups;
 }
 
 /* Lets programs check that this definition, not GLEW's, is the one in use. */

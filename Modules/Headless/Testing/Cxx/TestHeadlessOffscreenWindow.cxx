@@ -14,6 +14,8 @@
 #include "vtkSphereSource.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -40,6 +42,17 @@ int TestHeadlessOffscreenWindow(int, char*[])
   if (const char* expected = std::getenv("PROXYGI_EXPECT_OFFSCREEN"))
   {
     PGI_CHECK(description.rfind(expected, 0) == 0);
+  }
+
+  window->Render(); // the context, and GLEW's entry points
+  // Under OSMesa the shim must have answered GLEW from OSMesaGetProcAddress.
+  using Count = int (*)();
+  auto lookups = reinterpret_cast<Count>(dlsym(RTLD_DEFAULT, "pgiGlewShimOSMesaLookups"));
+  if (description.rfind("OSMesa (ProxyGI", 0) == 0)
+  {
+    const int n = lookups ? lookups() : 0;
+    std::printf("entry points from OSMesa: %d\n", n);
+    PGI_CHECK(n > 100);
   }
 
   vtkNew<vtkSphereSource> sphere;
