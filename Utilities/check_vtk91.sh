@@ -42,15 +42,21 @@ mount_system() {
   mount -t devpts devpts "$root/dev/pts" && mounted+=("$root/dev/pts")
 }
 
-make_root() {
+# Before anything is mounted in it: debootstrap makes the root's own /dev
+# entries, which a bind-mounted /dev would turn into the host's.
+bootstrap_root() {
   if ! command -v debootstrap >/dev/null 2>&1; then
     apt-get update -qq
     DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends debootstrap >/dev/null
   fi
   if [ ! -x "$root/usr/bin/apt-get" ]; then
     echo "check_vtk91: making a Debian 12 root in $root"
+    rm -rf "$root"
     debootstrap --variant=minbase bookworm "$root" >/dev/null
   fi
+}
+
+make_root() {
   # The same package sources as this machine.
   if [ -n "$(ls /etc/apt/sources.list.d/ 2>/dev/null)" ]; then
     rm -f "$root/etc/apt/sources.list"
@@ -77,6 +83,7 @@ missing_packages() {
 # The meshes and maps the tests read (in this tree's ignored Data/).
 "$here/Utilities/setup.sh" --data
 
+[ -f "$root/.proxygi-ready" ] || bootstrap_root
 mount_system
 if [ ! -f "$root/.proxygi-ready" ]; then
   make_root
