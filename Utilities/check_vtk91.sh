@@ -29,6 +29,8 @@ packages=(
 )
 
 mounted=()
+# A conffile an upgrade in the root touches must not stop dpkg at a prompt.
+confold=(-o Dpkg::Options::=--force-confdef -o Dpkg::Options::=--force-confold)
 cleanup() {
   local k
   for ((k = ${#mounted[@]} - 1; k >= 0; k--)); do umount "${mounted[k]}" 2>/dev/null || true; done
@@ -64,10 +66,11 @@ make_root() {
   fi
   chroot "$root" apt-get update -qq
   # An install cut short before (no /proc then) is finished first.
-  chroot "$root" dpkg --configure -a >/dev/null 2>&1 || true
+  chroot "$root" env DEBIAN_FRONTEND=noninteractive dpkg --force-confdef --force-confold \
+    --configure -a >/dev/null 2>&1 || true
   echo "check_vtk91: installing ${packages[*]}"
   chroot "$root" env DEBIAN_FRONTEND=noninteractive \
-    apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
+    apt-get install -y -qq --no-install-recommends "${confold[@]}" "${packages[@]}" >/dev/null
   touch "$root/.proxygi-ready"
 }
 
@@ -92,7 +95,7 @@ else
   if [ ${#missing[@]} -gt 0 ]; then
     echo "check_vtk91: installing ${missing[*]}"
     chroot "$root" env DEBIAN_FRONTEND=noninteractive \
-      apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+      apt-get install -y -qq --no-install-recommends "${confold[@]}" "${missing[@]}" >/dev/null
   fi
 fi
 [ "${1:-}" = "--root" ] && exit 0
