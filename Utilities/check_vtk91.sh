@@ -51,10 +51,12 @@ bootstrap_root() {
     apt-get update -qq
     DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends debootstrap >/dev/null
   fi
-  if [ ! -x "$root/usr/bin/apt-get" ]; then
+  # A root whose debootstrap did not finish is made again from nothing.
+  if [ ! -f "$root/.proxygi-bootstrapped" ]; then
     echo "check_vtk91: making a Debian 12 root in $root"
     rm -rf "$root"
     debootstrap --variant=minbase bookworm "$root" >/dev/null
+    touch "$root/.proxygi-bootstrapped"
   fi
 }
 
