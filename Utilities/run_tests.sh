@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Set up, build and run the default test suite (ctest, excluding the tests
-# labelled 'slow'). Exits non-zero on any failure. The tests run without a
+# labelled 'slow'), then the CPU suite under the sanitizers
+# (Utilities/run_sanitized_tests.sh). Exits non-zero on any failure. The tests run without a
 # display (GL through EGL, llvmpipe or the GPU); one test runs the GLX path
 # under a virtual X server (ProxyGI-GLX-OffscreenWindow). No test is retried,
 # except that one on the one known flake of Xvfb (the X server refusing the
@@ -14,6 +15,11 @@ status=0
 env -u DISPLAY ctest --output-on-failure --label-exclude slow \
   --parallel "${PROXYGI_JOBS:-2}" "$@" || status=$?
 if grep -q "run_under_xvfb: RETRY" Testing/Temporary/LastTest.log 2>/dev/null; then
-  echo "run_tests: ProxyGI-GLX-OffscreenWindow was retried once: Xvfb refused the first connection"
+  echo "run_tests: a test under Xvfb was retried once: the X server refused the first connection"
+fi
+# Then the CPU suite under AddressSanitizer and UBSan, in its own build tree
+# (PROXYGI_SANITIZERS=0 skips it).
+if [ "${PROXYGI_SANITIZERS:-1}" != 0 ]; then
+  "$here/Utilities/run_sanitized_tests.sh" || status=$?
 fi
 exit "$status"

@@ -2,6 +2,7 @@
 
 #include "pgiSHZonal.h"
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <mutex>
@@ -91,9 +92,18 @@ CapTables::CapTables(int order, int resolution, const LogOptions& log)
     bs.push_back(fHatSq > 0.0 ? gDotF / fHatSq : 1.0);
   }
   this->OLMaxNorm = xs.back();
-  this->OLScale = (resolution - 1) / this->OLMaxNorm;
   this->OLA.resize(resolution);
   this->OLB.resize(resolution);
+  if (xs.size() < 2)
+  {
+    // Order 1: a cap's log has no non-constant part, so the fit is its
+    // value at |f^| = 0 (the loop below would read past the one sample).
+    this->OLScale = 0.0;
+    std::fill(this->OLA.begin(), this->OLA.end(), as[0]);
+    std::fill(this->OLB.begin(), this->OLB.end(), bs[0]);
+    return;
+  }
+  this->OLScale = (resolution - 1) / this->OLMaxNorm;
   std::size_t j = 0;
   for (int i = 0; i < resolution; ++i)
   {

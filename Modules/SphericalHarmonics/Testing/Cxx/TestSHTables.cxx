@@ -8,6 +8,7 @@
 #include "pgiSHZonal.h"
 #include "pgiTesting.h"
 
+#include <cmath>
 #include <vector>
 
 using namespace proxygi::sh;
@@ -39,6 +40,13 @@ int TestSHTables(int, char*[])
     PGI_CHECK(tables.GetResolution() == 256);
     PGI_CHECK(AllFinite(tables.GetLogTable().data(), 256 * order));
     PGI_CHECK(AllFinite(tables.GetVisibilityTable().data(), 256 * order));
+    // The optimal-linear curves, order 1 included (one fitted sample there:
+    // AddressSanitizer found the fit reading past it).
+    PGI_CHECK(AllFinite(tables.GetOptimalLinearA().data(), 256));
+    PGI_CHECK(AllFinite(tables.GetOptimalLinearB().data(), 256));
+    double olA = -1.0, olB = -1.0;
+    tables.OptimalLinear(0.5 * tables.GetOptimalLinearMaxNorm(), olA, olB);
+    PGI_CHECK(std::isfinite(olA) && std::isfinite(olB));
     double worstGrid = 0.0, worstMid = 0.0, worstFloat = 0.0, worstVisMid = 0.0;
     for (int i = 0; i < 255; i += 5)
     {
