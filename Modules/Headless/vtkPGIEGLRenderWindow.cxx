@@ -121,17 +121,11 @@ struct vtkPGIEGLRenderWindow::Internals
   EGLContext Context = EGL_NO_CONTEXT;
   EGLSurface Surface = EGL_NO_SURFACE;
   int SurfaceSize[2] = { 0, 0 };
-  bool Failed = false;
 };
 
 vtkPGIEGLRenderWindow::vtkPGIEGLRenderWindow()
   : EGL(new Internals)
 {
-  this->SetReadyForRendering(true);
-  // Offscreen by nature: nothing to show, VTK keeps the image in its buffers.
-  this->SetShowWindow(false);
-  this->SetUseOffScreenBuffers(true);
-  this->SetScreenSize(4096, 4096);
   if (const char* env = std::getenv("PROXYGI_EGL_DEVICE"))
   {
     char* end = nullptr;
@@ -146,13 +140,6 @@ vtkPGIEGLRenderWindow::vtkPGIEGLRenderWindow()
 vtkPGIEGLRenderWindow::~vtkPGIEGLRenderWindow()
 {
   this->Finalize();
-  vtkRenderer* ren;
-  vtkCollectionSimpleIterator rit;
-  this->Renderers->InitTraversal(rit);
-  while ((ren = this->Renderers->GetNextRenderer(rit)))
-  {
-    ren->SetRenderWindow(nullptr);
-  }
 }
 
 void vtkPGIEGLRenderWindow::PrintSelf(ostream& os, vtkIndent indent)
@@ -160,8 +147,6 @@ void vtkPGIEGLRenderWindow::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "DeviceIndex: " << this->DeviceIndex << "\n";
   os << indent << "Platform: " << this->PlatformDescription << "\n";
-  os << indent << "Renderer: " << this->RendererDescription << "\n";
-  os << indent << "ContextError: " << this->ContextError << "\n";
 }
 
 bool vtkPGIEGLRenderWindow::IsGlewShimActive()
@@ -169,24 +154,14 @@ bool vtkPGIEGLRenderWindow::IsGlewShimActive()
   return proxygi::GlewShimActive();
 }
 
-bool vtkPGIEGLRenderWindow::CreateContext()
+bool vtkPGIEGLRenderWindow::HasContext() const
+{
+  return this->EGL->Context != EGL_NO_CONTEXT;
+}
+
+bool vtkPGIEGLRenderWindow::MakeContext()
 {
   Internals& e = *this->EGL;
-  if (e.Context != EGL_NO_CONTEXT)
-  {
-    return true;
-  }
-  if (e.Failed)
-  {
-    return false;
-  }
-  e.Failed = true; // until proven otherwise; no retry storms on every Render
-  if (!IsGlewShimActive())
-  {
-    this->ContextError = "the glewInit shim (libProxyGIGlewShim) is not in effect: link it "
-                         "before VTK's libraries with -Wl,--no-as-needed";
-    return false;
-  }
 
   const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
@@ -313,12 +288,6 @@ bool vtkPGIEGLRenderWindow::CreateContext()
     this->DestroyContext();
     return false;
   }
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
-  this->RendererDescription =
-    std::string(renderer ? renderer : "?") + ", OpenGL " + (version ? version : "?");
-  e.Failed = false;
-  this->ContextError.clear();
   return true;
 }
 
@@ -374,46 +343,6 @@ void vtkPGIEGLRenderWindow::DestroyContext()
   e = Internals();
 }
 
-void vtkPGIEGLRenderWindow::Initialize()
-{
-  if (this->VTKInitialized)
-  {
-    return;
-  }
-  if (!this->CreateContext())
-  {
-    vtkErrorMacro("No EGL context: " << this->ContextError);
-    return;
-  }
-  this->MakeCurrent();
-  // VTK reads the GL version and sets up its state from the current context.
-  this->VTKInitialized = this->InitializeFromCurrentContext();
-  this->Mapped = 1;
-}
-
-void vtkPGIEGLRenderWindow::Start()
-{
-  this->Initialize();
-  this->MakeCurrent();
-  this->Superclass::Start();
-}
-
-void vtkPGIEGLRenderWindow::Finalize()
-{
-  if (this->EGL->Context != EGL_NO_CONTEXT)
-  {
-    this->MakeCurrent();
-    if (this->VTKInitialized)
-    {
-      this->ReleaseGraphicsResources(this);
-    }
-  }
-  this->VTKInitialized = false;
-  this->Mapped = 0;
-  this->DestroyContext();
-  this->EGL->Failed = false;
-}
-
 void vtkPGIEGLRenderWindow::MakeCurrent()
 {
   Internals& e = *this->EGL;
@@ -446,16 +375,6 @@ void vtkPGIEGLRenderWindow::ReleaseCurrent()
 bool vtkPGIEGLRenderWindow::IsCurrent()
 {
   return this->EGL->Context != EGL_NO_CONTEXT && eglGetCurrentContext() == this->EGL->Context;
-}
-
-int vtkPGIEGLRenderWindow::SupportsOpenGL()
-{
-  return this->CreateContext() ? 1 : 0;
-}
-
-vtkTypeBool vtkPGIEGLRenderWindow::IsDirect()
-{
-  return this->EGL->Context != EGL_NO_CONTEXT ? 1 : 0;
 }
 
 void vtkPGIEGLRenderWindow::SetSize(int width, int height)

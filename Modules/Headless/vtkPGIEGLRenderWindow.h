@@ -26,47 +26,33 @@
 #define vtkPGIEGLRenderWindow_h
 
 #include "ProxyGIHeadlessModule.h"
-#include "vtkGenericOpenGLRenderWindow.h"
+#include "vtkPGIContextRenderWindow.h"
 
 #include <memory>
 #include <string>
 
-class PROXYGIHEADLESS_EXPORT vtkPGIEGLRenderWindow : public vtkGenericOpenGLRenderWindow
+class PROXYGIHEADLESS_EXPORT vtkPGIEGLRenderWindow : public vtkPGIContextRenderWindow
 {
 public:
   static vtkPGIEGLRenderWindow* New();
-  vtkTypeMacro(vtkPGIEGLRenderWindow, vtkGenericOpenGLRenderWindow);
+  vtkTypeMacro(vtkPGIEGLRenderWindow, vtkPGIContextRenderWindow);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// EGL device index (-1: automatic). Takes effect before the context exists.
   vtkSetMacro(DeviceIndex, int);
   vtkGetMacro(DeviceIndex, int);
 
-  /**
-   * Makes the EGL display, context and surface now (Render does it on demand).
-   * Returns false, with the reason in GetContextError(), when no EGL context
-   * can be had or the glewInit shim is not in effect; nothing is logged as an
-   * error so callers can fall back to another window type.
-   */
-  bool CreateContext();
-  /// Why CreateContext() failed ("" if it did not).
-  const std::string& GetContextError() const { return this->ContextError; }
+  // CreateContext() (vtkPGIContextRenderWindow) makes the EGL display,
+  // context and surface.
   /// How the context was made, e.g. "EGL device 0 (EGL_NV_device_cuda ...)".
   const std::string& GetPlatformDescription() const { return this->PlatformDescription; }
-  /// GL_RENDERER and GL_VERSION of the context (after CreateContext()).
-  const std::string& GetRendererDescription() const { return this->RendererDescription; }
 
   /// True when the glewInit shim of ProxyGI is the glewInit this process uses.
   static bool IsGlewShimActive();
 
-  void Initialize() override;
-  void Finalize() override;
-  void Start() override;
   void MakeCurrent() override;
   void ReleaseCurrent() override;
   bool IsCurrent() override;
-  int SupportsOpenGL() override;
-  vtkTypeBool IsDirect() override;
   void SetSize(int width, int height) override;
   void SetSize(int a[2]) override { this->SetSize(a[0], a[1]); }
   void* GetGenericContext() override;
@@ -76,14 +62,14 @@ protected:
   vtkPGIEGLRenderWindow();
   ~vtkPGIEGLRenderWindow() override;
 
+  bool MakeContext() override;
+  void DestroyContext() override;
+  bool HasContext() const override;
+  const char* GetContextKind() const override { return "EGL"; }
   bool EnsureSurface();
-  void DestroyContext();
 
   int DeviceIndex = -1;
-  std::string ContextError;
   std::string PlatformDescription;
-  std::string RendererDescription;
-  bool VTKInitialized = false;
 
 private:
   struct Internals;

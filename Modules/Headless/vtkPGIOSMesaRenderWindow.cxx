@@ -1,9 +1,6 @@
 #include "vtkPGIOSMesaRenderWindow.h"
 
-#include "pgiOffscreenWindow.h"
 #include "vtkObjectFactory.h"
-#include "vtkRenderer.h"
-#include "vtkRendererCollection.h"
 #include "vtk_glew.h"
 
 // glew.h undefines these; osmesa.h, included after it, needs them.
@@ -35,36 +32,22 @@ struct vtkPGIOSMesaRenderWindow::Internals
   OSMesaContext Context = nullptr;
   std::vector<unsigned char> Buffer;
   int BufferSize[2] = { 0, 0 };
-  bool Failed = false;
 };
 
 vtkPGIOSMesaRenderWindow::vtkPGIOSMesaRenderWindow()
   : OSMesa(new Internals)
 {
-  this->SetReadyForRendering(true);
-  this->SetShowWindow(false);
-  this->SetUseOffScreenBuffers(true);
-  this->SetScreenSize(4096, 4096);
 }
 
 vtkPGIOSMesaRenderWindow::~vtkPGIOSMesaRenderWindow()
 {
   this->Finalize();
-  vtkRenderer* ren;
-  vtkCollectionSimpleIterator rit;
-  this->Renderers->InitTraversal(rit);
-  while ((ren = this->Renderers->GetNextRenderer(rit)))
-  {
-    ren->SetRenderWindow(nullptr);
-  }
 }
 
 void vtkPGIOSMesaRenderWindow::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "OSMesaLibrary: " << GetOSMesaLibrary() << "\n";
-  os << indent << "Renderer: " << this->RendererDescription << "\n";
-  os << indent << "ContextError: " << this->ContextError << "\n";
 }
 
 const char* vtkPGIOSMesaRenderWindow::GetOSMesaLibrary()
@@ -87,26 +70,16 @@ bool vtkPGIOSMesaRenderWindow::OSMesaEntryPointsBound()
     a.dli_fbase == b.dli_fbase;
 }
 
-bool vtkPGIOSMesaRenderWindow::CreateContext()
+bool vtkPGIOSMesaRenderWindow::HasContext() const
+{
+  return this->OSMesa->Context != nullptr;
+}
+
+bool vtkPGIOSMesaRenderWindow::MakeContext()
 {
   Internals& o = *this->OSMesa;
-  if (o.Context)
-  {
-    return true;
-  }
-  if (o.Failed)
-  {
-    return false;
-  }
-  o.Failed = true; // until proven otherwise
   const std::string preload =
     std::string("LD_PRELOAD=") + (*GetOSMesaLibrary() ? GetOSMesaLibrary() : "libOSMesa.so.8");
-  if (!proxygi::GlewShimActive())
-  {
-    this->ContextError = "the glewInit shim (libProxyGIGlewShim) is not in effect: link it "
-                         "before VTK's libraries with -Wl,--no-as-needed";
-    return false;
-  }
   o.Create = reinterpret_cast<Internals::CreateContextAttribs>(
     dlsym(RTLD_DEFAULT, "OSMesaCreateContextAttribs"));
   o.Bind =
@@ -142,12 +115,6 @@ bool vtkPGIOSMesaRenderWindow::CreateContext()
     this->DestroyContext();
     return false;
   }
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
-  this->RendererDescription =
-    std::string(renderer ? renderer : "?") + ", OpenGL " + (version ? version : "?");
-  o.Failed = false;
-  this->ContextError.clear();
   return true;
 }
 
@@ -182,45 +149,6 @@ void vtkPGIOSMesaRenderWindow::DestroyContext()
   o.BufferSize[0] = o.BufferSize[1] = 0;
 }
 
-void vtkPGIOSMesaRenderWindow::Initialize()
-{
-  if (this->VTKInitialized)
-  {
-    return;
-  }
-  if (!this->CreateContext())
-  {
-    vtkErrorMacro("No OSMesa context: " << this->ContextError);
-    return;
-  }
-  this->MakeCurrent();
-  this->VTKInitialized = this->InitializeFromCurrentContext();
-  this->Mapped = 1;
-}
-
-void vtkPGIOSMesaRenderWindow::Start()
-{
-  this->Initialize();
-  this->MakeCurrent();
-  this->Superclass::Start();
-}
-
-void vtkPGIOSMesaRenderWindow::Finalize()
-{
-  if (this->OSMesa->Context)
-  {
-    this->MakeCurrent();
-    if (this->VTKInitialized)
-    {
-      this->ReleaseGraphicsResources(this);
-    }
-  }
-  this->VTKInitialized = false;
-  this->Mapped = 0;
-  this->DestroyContext();
-  this->OSMesa->Failed = false;
-}
-
 void vtkPGIOSMesaRenderWindow::MakeCurrent()
 {
   if (this->OSMesa->Context && !this->EnsureBuffer())
@@ -238,16 +166,6 @@ void vtkPGIOSMesaRenderWindow::ReleaseCurrent()
 bool vtkPGIOSMesaRenderWindow::IsCurrent()
 {
   return this->OSMesa->Context && this->OSMesa->Current() == this->OSMesa->Context;
-}
-
-int vtkPGIOSMesaRenderWindow::SupportsOpenGL()
-{
-  return this->CreateContext() ? 1 : 0;
-}
-
-vtkTypeBool vtkPGIOSMesaRenderWindow::IsDirect()
-{
-  return this->OSMesa->Context ? 1 : 0;
 }
 
 void* vtkPGIOSMesaRenderWindow::GetGenericContext()

@@ -19,60 +19,45 @@
  * - OSMesa's functions are looked up at run time (dlsym), so linking this
  *   module never pulls libOSMesa into programs that do not ask for it.
  *
- * CreateContext() checks both and says what is missing (GetContextError)
- * instead of rendering half-initialised.
+ * CreateContext() (vtkPGIContextRenderWindow) checks both and says what is
+ * missing (GetContextError) instead of rendering half-initialised.
  */
 #ifndef vtkPGIOSMesaRenderWindow_h
 #define vtkPGIOSMesaRenderWindow_h
 
 #include "ProxyGIHeadlessModule.h"
-#include "vtkGenericOpenGLRenderWindow.h"
+#include "vtkPGIContextRenderWindow.h"
 
 #include <memory>
 #include <string>
 
-class PROXYGIHEADLESS_EXPORT vtkPGIOSMesaRenderWindow : public vtkGenericOpenGLRenderWindow
+class PROXYGIHEADLESS_EXPORT vtkPGIOSMesaRenderWindow : public vtkPGIContextRenderWindow
 {
 public:
   static vtkPGIOSMesaRenderWindow* New();
-  vtkTypeMacro(vtkPGIOSMesaRenderWindow, vtkGenericOpenGLRenderWindow);
+  vtkTypeMacro(vtkPGIOSMesaRenderWindow, vtkPGIContextRenderWindow);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  /**
-   * Makes the OSMesa context and its buffer now (Render does it on demand).
-   * False, with the reason in GetContextError(), when libOSMesa is not
-   * preloaded, the shim is not in effect or OSMesa refuses the context.
-   */
-  bool CreateContext();
-  const std::string& GetContextError() const { return this->ContextError; }
-  /// GL_RENDERER and GL_VERSION of the context (after CreateContext()).
-  const std::string& GetRendererDescription() const { return this->RendererDescription; }
 
   /// Whether GL's entry points bind to libOSMesa in this process (LD_PRELOAD).
   static bool OSMesaEntryPointsBound();
   /// The libOSMesa this build found (what LD_PRELOAD must name), or "".
   static const char* GetOSMesaLibrary();
 
-  void Initialize() override;
-  void Finalize() override;
-  void Start() override;
   void MakeCurrent() override;
   void ReleaseCurrent() override;
   bool IsCurrent() override;
-  int SupportsOpenGL() override;
-  vtkTypeBool IsDirect() override;
   void* GetGenericContext() override;
 
 protected:
   vtkPGIOSMesaRenderWindow();
   ~vtkPGIOSMesaRenderWindow() override;
 
+  /// False when libOSMesa is not preloaded or OSMesa refuses the context.
+  bool MakeContext() override;
+  void DestroyContext() override;
+  bool HasContext() const override;
+  const char* GetContextKind() const override { return "OSMesa"; }
   bool EnsureBuffer();
-  void DestroyContext();
-
-  std::string ContextError;
-  std::string RendererDescription;
-  bool VTKInitialized = false;
 
 private:
   struct Internals;
