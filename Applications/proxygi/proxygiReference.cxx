@@ -182,16 +182,7 @@ int RunReference(const Args& args)
     const double rays = out->GetFieldData()->GetArray("Rays")->GetTuple1(0);
     const double meanRel = out->GetFieldData()->GetArray("MeanRelativeStdErr")->GetTuple1(0);
     const double rel = out->GetFieldData()->GetArray("RelativeRMSStdErr")->GetTuple1(0);
-    const bool written = WriteThenRename(perVertex,
-      [&](const std::string& file)
-      {
-        vtkNew<vtkXMLPolyDataWriter> writer;
-        writer->SetFileName(file.c_str());
-        writer->SetInputData(out);
-        writer->SetDataModeToAppended();
-        return writer->Write() == 1;
-      });
-    if (!written)
+    if (!WritePolyData(out, perVertex))
     {
       vtkLogF(ERROR, "proxygi reference: cannot write %s", perVertex.c_str());
       return 1;
@@ -281,8 +272,7 @@ int RunReference(const Args& args)
   if (!png.empty())
   {
     const double exposure = exposureOption > 0.0 ? exposureOption : AutoExposure(radiance);
-    if (!WriteThenRename(png,
-          [&](const std::string& file) { return WriteTonemappedPNG(radiance, exposure, file); }))
+    if (!WriteTonemappedPNG(radiance, exposure, png))
     {
       vtkLogF(ERROR, "proxygi reference: cannot write %s", png.c_str());
       return 1;
