@@ -1,0 +1,144 @@
+// vtkPGIGlobalIllumination gives bit-identical results whatever the threads:
+// every SMP backend this VTK has (Sequential, STDThread, and TBB or OpenMP
+// where built), each with 1, 2 and 8 threads, on the hard scenes with every
+// effect on (shadows, the shadowed bounce with hierarchy cuts, local lights,
+// a reflecting ground) and with the unshadowed exact operator. Every output
+// point array is compared byte for byte with the first run's.
+#include "vtkPGIGISettings.h"
+#include "vtkPGIGlobalIllumination.h"
+
+#include "pgiHardScenes.h"
+#include "pgiTesting.h"
+
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+#include <vtkSMPTools.h>
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace
+{
+vtkSmartPointer<vtkPolyData> Shade(
+  const pgitest::HardScene& scene, vtkPGILighting* lighting, bool shadowedBounce)
+{
+  vtkNew<vtkPGIGlobalIllumination> gi;
+  gi->SetInputData(scene.Receivers);
+  gi->SetProxiesData(scene.Proxies);
+  gi->SetLighting(lighting);
+  const double origin[3] = { 0, 0, -1.5 }, up[3] = { 0, 0, 1 }, grey[3] = { 0.5, 0.5, 0.5 };
+  gi->AddBlockerPlane(origin, up, grey);
+  vtkPGIGISettings* settings = gi->GetSettings();
+  settings->IndirectOn();
+  if (shadowedBounce)
+  {
+    settings->SetIndirectMode(vtkPGIGISettings::INDIRECT_MODE_SHADOWED);
+    settings->SetHierarchyAngle(25.0);
+  }
+  else
+  {
+    settings->SetIndirectMode(vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+    settings->SetIndirectOperator(vtkPGIGISettings::INDIRECT_EXACT);
+  }
+  gi->Update();
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->DeepCopy(gi->GetOutput());
+  return out;
+}
+
+// The name of the first array that differs in a single bit, or "".
+std::string FirstDifference(vtkPolyData* a, vtkPolyData* b)
+{
+  vtkPointData* pa = a->GetPointData();
+  vtkPointData* pb = b->GetPointData();
+  if (pa->GetNumberOfArrays() != pb->GetNumberOfArrays())
+  {
+    return "(number of arrays)";
+  }
+  for (int k = 0; k < pa->GetNumberOfArrays(); ++k)
+  {
+    vtkDataArray* x = pa->GetArray(k);
+    vtkDataArray* y = x ? pb->GetArray(x->GetName()) : nullptr;
+    if (!x)
+    {
+      continue;
+    }
+    if (!y || x->GetDataType() != y->GetDataType() ||
+      x->GetNumberOfValues() != y->GetNumberOfValues() ||
+      std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
+        static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) != 0)
+    {
+      return x->GetName() ? x->GetName() : "(unnamed)";
+    }
+  }
+  return std::string();
+}
+} // namespace
+
+int TestShadingDeterminism(int, char*[])
+{
+  const std::string original = vtkSMPTools::GetBackend();
+  std::vector<std::string> backends;
+  for (const char* candidate : { "Sequential", "STDThread", "TBB", "OpenMP" })
+  {
+    if (vtkSMPTools::SetBackend(candidate) && vtkSMPTools::GetBackend() == std::string(candidate))
+    {
+      backends.emplace_back(candidate);
+    }
+  }
+  std::printf("SMP backends in this VTK:");
+  for (const std::string& b : backends)
+  {
+    std::printf(" %s", b.c_str());
+  }
+  std::printf("\n");
+  PGI_CHECK(backends.size() >= 2);
+
+  vtkSmartPointer<vtkPGILighting> lighting = pgitest::HardLighting();
+  int runs = 0, identical = 0;
+  for (const pgitest::HardScene& scene : pgitest::HardScenes())
+  {
+    for (bool shadowedBounce : { true, false })
+    {
+      vtkSmartPointer<vtkPolyData> first;
+      for (const std::string& backend : backends)
+      {
+        for (int threads : { 1, 2, 8 })
+        {
+          if (backend == "Sequential" && threads > 1)
+          {
+            continue; // one thread whatever is asked
+          }
+          vtkSMPTools::SetBackend(backend.c_str());
+          vtkSMPTools::Initialize(threads);
+          vtkSmartPointer<vtkPolyData> out = Shade(scene, lighting, shadowedBounce);
+          ++runs;
+          if (!first)
+          {
+            first = out;
+            ++identical;
+            continue;
+          }
+          const std::string differs = FirstDifference(first, out);
+          if (differs.empty())
+          {
+            ++identical;
+          }
+          else
+          {
+            std::printf("  %s, %s bounce, %s with %d threads: '%s' differs from the first run\n",
+              scene.Name.c_str(), shadowedBounce ? "shadowed" : "unshadowed", backend.c_str(),
+              threads, differs.c_str());
+          }
+        }
+      }
+    }
+  }
+  std::printf("%d of %d runs bit-identical to the first of their scene\n", identical, runs);
+  PGI_CHECK(identical == runs);
+  vtkSMPTools::SetBackend(original.c_str());
+  vtkSMPTools::Initialize(0);
+  return pgitest::Result();
+}
