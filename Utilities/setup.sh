@@ -14,7 +14,7 @@ data_dir="${PROXYGI_DATA_DIR:-$here/Data}"
 # One VTK per machine: ParaView 5.11's SDK (VTK 9.2) serves the C++ modules
 # and the ParaView plugin; libvtk9-dev conflicts with python3-paraview.
 packages=(
-  build-essential cmake ninja-build pkg-config file
+  build-essential cmake ninja-build pkg-config file clang-format
   paraview-dev python3-paraview python3-dev
   qtbase5-dev qttools5-dev libqt5x11extras5-dev libqt5svg5-dev
   qtxmlpatterns5-dev-tools libqt5opengl5-dev libdouble-conversion-dev

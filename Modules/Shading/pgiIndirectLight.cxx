@@ -113,7 +113,8 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
       const float* pn = &blockers.PlaneNormal[3 * k];
       for (int c = 0; c < 3; ++c)
       {
-        const float r = blockers.PlaneAlbedo[3 * k + c] * (planeScale ? planeScale[3 * k + c] : 1.0f) *
+        const float r = blockers.PlaneAlbedo[3 * k + c] *
+          (planeScale ? planeScale[3 * k + c] : 1.0f) *
           sh::Reconstruct(order, &lights.Response[c * n2], pn[0], pn[1], pn[2]);
         sum[c] += r * capWeight;
       }
