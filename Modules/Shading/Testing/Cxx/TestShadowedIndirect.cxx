@@ -252,7 +252,6 @@ namespace
 // with 16 variational spheres, on the ground and on its own vertices.
 int Timing()
 {
-  using GI = vtkPGIGlobalIllumination;
   vtkNew<vtkAppendPolyData> meshes;
   std::vector<double> spheres;
   std::vector<int> objects;
