@@ -107,6 +107,26 @@ std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> AddGPUMappers(vtkRenderer* 
   return mappers;
 }
 
+bool ReadBackRadiance(const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>& mappers,
+  std::vector<vtkSmartPointer<vtkPolyData>>& shaded, std::string& error)
+{
+  for (auto& mapper : mappers)
+  {
+    vtkNew<vtkFloatArray> radiance;
+    if (!mapper->GetPerVertexResults(radiance))
+    {
+      error = "the GPU GI pass did not run (" + mapper->GetGIStatus() + ")";
+      return false;
+    }
+    radiance->SetName("Radiance");
+    auto result = vtkSmartPointer<vtkPolyData>::New();
+    result->ShallowCopy(mapper->GetInput());
+    result->GetPointData()->AddArray(radiance);
+    shaded.push_back(result);
+  }
+  return true;
+}
+
 // Per pixel on the GPU: plain mappers (the albedo as diffuse colour) under the pass.
 void AddImageSpacePass(vtkRenderer* renderer, vtkPGIImageSpaceGIPass* pass,
   const SceneDescription& scene, const std::vector<vtkSmartPointer<vtkPolyData>>& receivers,

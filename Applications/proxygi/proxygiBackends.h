@@ -8,6 +8,7 @@
 #include "pgiSceneSetup.h"
 #include "vtkSmartPointer.h"
 
+#include <string>
 #include <vector>
 
 class vtkPGIGIPolyDataMapper;
@@ -36,6 +37,12 @@ std::vector<vtkSmartPointer<vtkPolyData>> AddVertexColourActors(
 std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> AddGPUMappers(vtkRenderer* renderer,
   const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, vtkPGIGISettings* settings,
   const LoadedScene& loaded, const SceneProxies& proxies, double exposure);
+
+/// After a frame drew them: each GI mapper's per-vertex radiance read back,
+/// as "Radiance" on a shallow copy of the mapper's input, appended to
+/// `shaded`. False, with why, when a mapper's GI pass did not run.
+bool ReadBackRadiance(const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>& mappers,
+  std::vector<vtkSmartPointer<vtkPolyData>>& shaded, std::string& error);
 
 /// Plain mappers (the albedo as diffuse colour) under `pass`, the renderer's pass.
 void AddImageSpacePass(vtkRenderer* renderer, vtkPGIImageSpaceGIPass* pass,

@@ -236,23 +236,17 @@ std::vector<vtkSmartPointer<vtkPolyData>> ShadeOnCPU(
 // error and the exposure need it), then one frame that recomputes GI timed.
 bool ReadBackGPU(vtkRenderWindow* window,
   const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>& mappers,
-  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, const SceneDescription& scene,
-  std::vector<vtkSmartPointer<vtkPolyData>>& shaded, double& exposure, double& frameSeconds)
+  const SceneDescription& scene, std::vector<vtkSmartPointer<vtkPolyData>>& shaded,
+  double& exposure, double& frameSeconds)
 {
+  std::string error;
+  if (!ReadBackRadiance(mappers, shaded, error))
+  {
+    vtkLogF(ERROR, "proxygi render: %s", error.c_str());
+    return false;
+  }
   for (std::size_t k = 0; k < mappers.size(); ++k)
   {
-    vtkNew<vtkFloatArray> radiance;
-    if (!mappers[k]->GetPerVertexResults(radiance))
-    {
-      vtkLogF(ERROR, "proxygi render: the GPU GI pass did not run (%s)",
-        mappers[k]->GetGIStatus().c_str());
-      return false;
-    }
-    radiance->SetName("Radiance");
-    auto result = vtkSmartPointer<vtkPolyData>::New();
-    result->ShallowCopy(receivers[k]);
-    result->GetPointData()->AddArray(radiance);
-    shaded.push_back(result);
     std::printf("gpu: object %zu (%s): %s\n", k, scene.Objects[k].Name.c_str(),
       mappers[k]->GetGIStatus().c_str());
   }
@@ -391,7 +385,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   {
     window->WaitForCompletion();
     t2 = Clock::now();
-    if (!ReadBackGPU(window, giMappers, receiversIn, scene, shaded, exposure, giFrame))
+    if (!ReadBackGPU(window, giMappers, scene, shaded, exposure, giFrame))
     {
       return 1;
     }

@@ -17,7 +17,6 @@
 #include "vtkPGILighting.h"
 
 #include <vtkActor.h>
-#include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkCommand.h>
 #include <vtkCoordinate.h>
@@ -29,7 +28,6 @@
 #include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -194,6 +192,8 @@ private:
   void OnLampMoved(vtkObject*, unsigned long, void*);
   void OnLampReleased(vtkObject*, unsigned long, void*);
   double InitialExposure();
+  bool PerVertexRadiance(
+    std::vector<vtkSmartPointer<vtkPolyData>>& shaded, std::string& error) const;
   void SetExposure(double exposure);
 
   SceneDescription Scene;
@@ -396,28 +396,10 @@ void Viewer::ComputeError()
     return;
   }
   std::vector<vtkSmartPointer<vtkPolyData>> shaded;
-  if (this->Mode == Backend::Gpu)
+  if (!this->PerVertexRadiance(shaded, error))
   {
-    for (auto& mapper : this->Mappers)
-    {
-      vtkNew<vtkFloatArray> radiance;
-      if (!mapper->GetPerVertexResults(radiance))
-      {
-        this->ErrorLine = "error: the GPU GI pass did not run (" + mapper->GetGIStatus() + ")";
-        return;
-      }
-      radiance->SetName("Radiance");
-      vtkNew<vtkPolyData> result;
-      result->GetPointData()->AddArray(radiance);
-      shaded.emplace_back(result);
-    }
-  }
-  else
-  {
-    for (auto& gi : this->Filters)
-    {
-      shaded.emplace_back(gi->GetOutput());
-    }
+    this->ErrorLine = "error: " + error;
+    return;
   }
   char line[160];
   std::snprintf(line, sizeof(line), "error vs Embree reference (%d spp): %.2f%% per vertex",
@@ -451,6 +433,7 @@ void Viewer::UpdateOverlay()
   vtkPGIGIBake* bake = this->Mode == Backend::Gpu
     ? (this->Mappers.empty() ? nullptr : this->Mappers[0]->GetBake())
     : this->Mode == Backend::ImageSpace ? this->Pass->GetBake()
+    : this->Filters.empty()             ? nullptr
                                         : this->Filters[0]->GetBake();
   for (const std::string& line : bake ? bake->GetScene().Plan : std::vector<std::string>())
   {
@@ -534,25 +517,30 @@ double Viewer::InitialExposure()
     return ExposureFromPicture(this->Window, this->Pass);
   }
   std::vector<vtkSmartPointer<vtkPolyData>> shaded;
-  if (this->Mode == Backend::Vertex)
+  std::string error;
+  return this->PerVertexRadiance(shaded, error) ? AutomaticExposure(shaded) : 1.0;
+}
+
+// The per-vertex "Radiance" of every object: the CPU filter's outputs, or
+// the GI mappers' read back. False (with why) when there is none.
+bool Viewer::PerVertexRadiance(
+  std::vector<vtkSmartPointer<vtkPolyData>>& shaded, std::string& error) const
+{
+  shaded.clear();
+  for (auto& gi : this->Filters)
   {
-    for (auto& gi : this->Filters)
-    {
-      shaded.emplace_back(gi->GetOutput());
-    }
+    shaded.emplace_back(gi->GetOutput());
   }
-  for (auto& mapper : this->Mappers)
+  if (!ReadBackRadiance(this->Mappers, shaded, error))
   {
-    vtkNew<vtkFloatArray> radiance;
-    if (mapper->GetPerVertexResults(radiance))
-    {
-      radiance->SetName("Radiance");
-      vtkNew<vtkPolyData> result;
-      result->GetPointData()->AddArray(radiance);
-      shaded.emplace_back(result);
-    }
+    return false;
   }
-  return shaded.empty() ? 1.0 : AutomaticExposure(shaded);
+  if (shaded.empty())
+  {
+    error = "no per-vertex radiance in this backend";
+    return false;
+  }
+  return true;
 }
 
 void Viewer::SetExposure(double exposure)

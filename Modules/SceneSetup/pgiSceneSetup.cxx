@@ -29,6 +29,7 @@
 #include <fstream>
 #include <functional>
 #include <sstream>
+#include <unistd.h>
 
 namespace proxygi
 {
@@ -69,7 +70,8 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& path)
 // Cache entries appear whole or not at all: written aside, then renamed.
 void Write(vtkPolyData* data, const std::string& path)
 {
-  const std::string aside = path + ".writing";
+  // Per process: two runs filling one cache do not write the same file.
+  const std::string aside = path + ".writing-" + std::to_string(getpid());
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetFileName(aside.c_str());
   writer->SetInputData(data);
