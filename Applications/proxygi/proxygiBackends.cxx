@@ -4,6 +4,7 @@
 
 #include "vtkPGIGIPolyDataMapper.h"
 #include "vtkPGIGISettings.h"
+#include "vtkPGIGlobalIllumination.h"
 #include "vtkPGIImageSpaceGIPass.h"
 #include "vtkPGILighting.h"
 
@@ -25,6 +26,21 @@ namespace proxygi
 {
 namespace cli
 {
+const vtkPGIGISettings::Support& BackendSupport(const std::string& mode)
+{
+  return mode == "gpu"      ? vtkPGIGIPolyDataMapper::GetSupport()
+    : mode == "image-space" ? vtkPGIImageSpaceGIPass::GetSupport()
+                            : vtkPGIGlobalIllumination::GetSupport();
+}
+
+void SetBackendPlaneDefaults(vtkPGIGISettings* settings, const std::string& mode)
+{
+  const bool imageSpace = mode == "image-space";
+  settings->SetPlaneBlocking(
+    imageSpace ? vtkPGIGISettings::PLANES_IN_LOG_SPACE : vtkPGIGISettings::PLANES_IN_LIGHT);
+  settings->SetPlaneBounceShadows(!imageSpace);
+}
+
 // Exposure: the 95th percentile of the per-vertex radiance to 0.8.
 double AutomaticExposure(const std::vector<vtkSmartPointer<vtkPolyData>>& shaded)
 {

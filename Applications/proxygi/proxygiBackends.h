@@ -6,13 +6,13 @@
 #define proxygiBackends_h
 
 #include "pgiSceneSetup.h"
+#include "vtkPGIGISettings.h" // Support
 #include "vtkSmartPointer.h"
 
 #include <string>
 #include <vector>
 
 class vtkPGIGIPolyDataMapper;
-class vtkPGIGISettings;
 class vtkPGIImageSpaceGIPass;
 class vtkPolyData;
 class vtkRenderWindow;
@@ -22,6 +22,15 @@ namespace proxygi
 {
 namespace cli
 {
+/// What the backend a --mode names ("gpu", "vertex", "image-space") honours.
+const vtkPGIGISettings::Support& BackendSupport(const std::string& mode);
+
+/// The backend's own plane handling on `settings`: the image-space pass keeps
+/// the planes in log space with no plane-bounce shadows (its defaults, so a
+/// plain run has nothing to report); the others carry them in the light,
+/// shadowed.
+void SetBackendPlaneDefaults(vtkPGIGISettings* settings, const std::string& mode);
+
 /// The automatic exposure (AutoExposure) of per-vertex "Radiance" arrays.
 double AutomaticExposure(const std::vector<vtkSmartPointer<vtkPolyData>>& shaded);
 

@@ -178,13 +178,7 @@ vtkSmartPointer<vtkPGIGISettings> MakeSettings(
       ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
       : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
   settings->SetHierarchyAngle(o.HierarchyAngle);
-  if (o.ImageSpace())
-  {
-    // The pass keeps the planes in log space and has no plane-bounce
-    // shadows: its defaults, so a plain run has nothing to report.
-    settings->SetPlaneBlocking(vtkPGIGISettings::PLANES_IN_LOG_SPACE);
-    settings->PlaneBounceShadowsOff();
-  }
+  SetBackendPlaneDefaults(settings, o.Mode);
   return settings;
 }
 
@@ -192,9 +186,7 @@ vtkSmartPointer<vtkPGIGISettings> MakeSettings(
 vtkSmartPointer<vtkPGIGISettings> ReportSettings(vtkPGIGISettings* settings, const RenderOptions& o,
   const SceneProxies& proxies, const LoadedScene& loaded)
 {
-  const vtkPGIGISettings::Support& support = o.Gpu() ? vtkPGIGIPolyDataMapper::GetSupport()
-    : o.ImageSpace()                                 ? vtkPGIImageSpaceGIPass::GetSupport()
-                                                     : vtkPGIGlobalIllumination::GetSupport();
+  const vtkPGIGISettings::Support& support = BackendSupport(o.Mode);
   auto effective = vtkSmartPointer<vtkPGIGISettings>::New();
   std::vector<std::string> notes;
   vtkPGILighting* lighting = loaded.Lighting;

@@ -275,20 +275,8 @@ void Viewer::ApplySettings()
   this->Settings->SetLocalLights(this->LocalLights);
   // The CPU filter's hierarchy cuts as in proxygi render --mode vertex.
   this->Settings->SetHierarchyAngle(this->Mode == Backend::Vertex ? 25.0 : 0.0);
-  if (this->Mode == Backend::ImageSpace)
-  {
-    this->Settings->SetPlaneBlocking(vtkPGIGISettings::PLANES_IN_LOG_SPACE);
-    this->Settings->PlaneBounceShadowsOff();
-  }
-  else
-  {
-    this->Settings->SetPlaneBlocking(vtkPGIGISettings::PLANES_IN_LIGHT);
-    this->Settings->PlaneBounceShadowsOn();
-  }
-  const vtkPGIGISettings::Support& support = this->Mode == Backend::Gpu
-    ? vtkPGIGIPolyDataMapper::GetSupport()
-    : this->Mode == Backend::ImageSpace ? vtkPGIImageSpaceGIPass::GetSupport()
-                                        : vtkPGIGlobalIllumination::GetSupport();
+  SetBackendPlaneDefaults(this->Settings, BackendName(this->Mode));
+  const vtkPGIGISettings::Support& support = BackendSupport(BackendName(this->Mode));
   this->NotHonoured.clear();
   vtkPGILighting* lighting = this->Loaded.Lighting;
   this->Settings->Resolve(support, static_cast<int>(this->Proxies->Planes.size()), this->Effective,
