@@ -1,8 +1,11 @@
 #include "pgiSHBasis.h"
 
 #include <array>
+#include <cmath>
+#include <map>
 #include <mutex>
 #include <stdexcept>
+#include <vector>
 
 namespace proxygi
 {
@@ -140,12 +143,19 @@ T Reconstruct(int order, const T* coeffs, T x, T y, T z)
   return Dot(NumCoefficients(order), coeffs, basis);
 }
 
-void GaussLegendre(
-  int count, double a, double b, std::vector<double>& nodes, std::vector<double>& weights)
+namespace
 {
-  nodes.resize(count);
-  weights.resize(count);
-  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+// The rule on [-1, 1]: nodes, and the denominators of their weights.
+struct UnitGaussLegendre
+{
+  std::vector<double> T, Denominator;
+};
+
+UnitGaussLegendre MakeUnitGaussLegendre(int count)
+{
+  UnitGaussLegendre rule;
+  rule.T.resize(count);
+  rule.Denominator.resize(count);
   for (int i = 0; i < count; ++i)
   {
     // Newton on P_count from the Chebyshev-like first guess.
@@ -173,8 +183,38 @@ void GaussLegendre(
         break;
       }
     }
-    nodes[i] = mid + half * t;
-    weights[i] = half * 2.0 / ((1.0 - t * t) * dp * dp);
+    rule.T[i] = t;
+    rule.Denominator[i] = (1.0 - t * t) * dp * dp;
+  }
+  return rule;
+}
+} // namespace
+
+void GaussLegendre(
+  int count, double a, double b, std::vector<double>& nodes, std::vector<double>& weights)
+{
+  // Newton rarely meets its 1e-16 step and runs its 100 iterations: callers
+  // that ask for a rule per receiver or per light made it half a filter
+  // update. Each count is solved once per process.
+  static std::mutex mutex;
+  static std::map<int, UnitGaussLegendre> rules;
+  const UnitGaussLegendre* rule;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = rules.find(count);
+    if (it == rules.end())
+    {
+      it = rules.emplace(count, MakeUnitGaussLegendre(count)).first;
+    }
+    rule = &it->second; // std::map nodes never move
+  }
+  nodes.resize(count);
+  weights.resize(count);
+  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+  for (int i = 0; i < count; ++i)
+  {
+    nodes[i] = mid + half * rule->T[i];
+    weights[i] = half * 2.0 / rule->Denominator[i];
   }
 }
 
