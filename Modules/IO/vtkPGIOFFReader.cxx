@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <new>
 #include <sstream>
 #include <vector>
 
@@ -34,6 +35,17 @@ void vtkPGIOFFReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "ReadFromInputString: " << this->ReadFromInputString << "\n";
+  os << indent << "InputString: " << this->InputString.size() << " bytes\n";
+}
+
+void vtkPGIOFFReader::SetInputString(const std::string& text)
+{
+  if (text != this->InputString)
+  {
+    this->InputString = text;
+    this->Modified();
+  }
 }
 
 namespace
@@ -83,22 +95,56 @@ unsigned char ToByte(double v)
 int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
 {
   vtkPolyData* output = vtkPolyData::GetData(out);
-  if (!this->FileName || !*this->FileName)
+  std::ifstream file;
+  std::istringstream text;
+  std::istream* in = &text;
+  unsigned long long bytes = 0;
+  if (this->ReadFromInputString)
   {
-    vtkErrorMacro("No FileName set.");
+    text.str(this->InputString);
+    bytes = this->InputString.size();
+  }
+  else
+  {
+    if (!this->FileName || !*this->FileName)
+    {
+      vtkErrorMacro("No FileName set.");
+      return 0;
+    }
+    file.open(this->FileName);
+    if (!file)
+    {
+      vtkErrorMacro("Cannot open OFF file '" << this->FileName << "'.");
+      return 0;
+    }
+    in = &file;
+    bytes = vtksys::SystemTools::FileLength(this->FileName);
+  }
+  try
+  {
+    return this->ReadOFF(*in, bytes, output);
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("'" << this->InputName() << "': out of memory for a mesh this size.");
+    output->Initialize();
     return 0;
   }
-  std::ifstream in(this->FileName);
-  if (!in)
-  {
-    vtkErrorMacro("Cannot open OFF file '" << this->FileName << "'.");
-    return 0;
-  }
+}
+
+std::string vtkPGIOFFReader::InputName() const
+{
+  return this->ReadFromInputString ? "(input string)" : (this->FileName ? this->FileName : "");
+}
+
+int vtkPGIOFFReader::ReadOFF(std::istream& in, unsigned long long bytes, vtkPolyData* output)
+{
+  const std::string name = this->InputName();
   OFFTokens tokens(in);
   std::string line;
   if (!tokens.NextLine(line))
   {
-    vtkErrorMacro("'" << this->FileName << "' is empty.");
+    vtkErrorMacro("'" << name << "' is empty.");
     return 0;
   }
   std::istringstream header(line);
@@ -114,7 +160,7 @@ int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
     std::getline(header, rest);
     if (rest.find_first_not_of(" \t\r") == std::string::npos && !tokens.NextLine(line))
     {
-      vtkErrorMacro("'" << this->FileName << "' ends after its header.");
+      vtkErrorMacro("'" << name << "' ends after its header.");
       return 0;
     }
     if (rest.find_first_not_of(" \t\r") != std::string::npos)
@@ -128,17 +174,16 @@ int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
     counts >> nv >> nf >> ne;
     if (nv < 0 || nf < 0)
     {
-      vtkErrorMacro("'" << this->FileName << "': bad counts line '" << line << "'.");
+      vtkErrorMacro("'" << name << "': bad counts line '" << line << "'.");
       return 0;
     }
   }
   // A vertex line takes at least 6 bytes ("0 0 0\n"), a face 4 ("1 0\n"):
   // counts the file cannot hold are refused before anything is allocated.
-  const unsigned long long bytes = vtksys::SystemTools::FileLength(this->FileName);
   if (static_cast<unsigned long long>(nv) > bytes / 6 ||
     static_cast<unsigned long long>(nf) > bytes / 4)
   {
-    vtkErrorMacro("'" << this->FileName << "': the header claims " << nv << " vertices and " << nf
+    vtkErrorMacro("'" << name << "': the header claims " << nv << " vertices and " << nf
                       << " faces, more than a file of " << bytes << " bytes can hold.");
     return 0;
   }
@@ -165,7 +210,7 @@ int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
   {
     if (!tokens.NextLine(line))
     {
-      vtkErrorMacro("'" << this->FileName << "': truncated at vertex " << i << " of " << nv);
+      vtkErrorMacro("'" << name << "': truncated at vertex " << i << " of " << nv);
       return 0;
     }
     std::istringstream v(line);
@@ -173,8 +218,7 @@ int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
     v >> p[0] >> p[1] >> p[2];
     if (v.fail())
     {
-      vtkErrorMacro(
-        "'" << this->FileName << "': vertex " << i << " is not three numbers: '" << line << "'");
+      vtkErrorMacro("'" << name << "': vertex " << i << " is not three numbers: '" << line << "'");
       return 0;
     }
     nonFinite = nonFinite || !std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]);
@@ -199,7 +243,7 @@ int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
   }
   if (nonFinite)
   {
-    vtkWarningMacro("'" << this->FileName << "' holds NaN or Inf coordinates.");
+    vtkWarningMacro("'" << name << "' holds NaN or Inf coordinates.");
   }
 
   vtkNew<vtkCellArray> polys;
@@ -212,7 +256,7 @@ int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
   {
     if (!tokens.NextLine(line))
     {
-      vtkErrorMacro("'" << this->FileName << "': truncated at face " << f << " of " << nf);
+      vtkErrorMacro("'" << name << "': truncated at face " << f << " of " << nf);
       return 0;
     }
     std::istringstream fs(line);
@@ -220,12 +264,12 @@ int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
     fs >> k;
     if (fs.fail() || k < 1)
     {
-      vtkErrorMacro("'" << this->FileName << "': face " << f << " has no vertex count.");
+      vtkErrorMacro("'" << name << "': face " << f << " has no vertex count.");
       return 0;
     }
     if (k > nv || static_cast<unsigned long long>(k) > bytes / 2)
     {
-      vtkErrorMacro("'" << this->FileName << "': face " << f << " claims " << k
+      vtkErrorMacro("'" << name << "': face " << f << " claims " << k
                         << " vertices, more than the mesh (" << nv << ") or the file holds.");
       return 0;
     }
@@ -236,7 +280,7 @@ int vtkPGIOFFReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
       fs >> id;
       if (fs.fail() || id < 0 || id >= nv)
       {
-        vtkErrorMacro("'" << this->FileName << "': face " << f << " has a bad vertex index.");
+        vtkErrorMacro("'" << name << "': face " << f << " has a bad vertex index.");
         return 0;
       }
       ids[j] = static_cast<vtkIdType>(id);

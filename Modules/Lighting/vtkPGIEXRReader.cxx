@@ -41,6 +41,7 @@ void vtkPGIEXRReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "LatLong: " << this->LatLong << "\n";
   os << indent << "ClampValue: " << this->ClampValue << "\n";
+  os << indent << "MaximumNumberOfPixels: " << this->MaximumNumberOfPixels << "\n";
   os << indent << "NumberOfClampedValues: " << this->NumberOfClampedValues << "\n";
 }
 
@@ -55,8 +56,18 @@ bool vtkPGIEXRReader::ReadHeader(int& width, int& height)
   {
     Imf::InputFile file(this->FileName);
     const Imath::Box2i window = file.header().dataWindow();
-    width = window.max.x - window.min.x + 1;
-    height = window.max.y - window.min.y + 1;
+    // In 64 bits: a hostile window's corners are any two ints.
+    const long long w = static_cast<long long>(window.max.x) - window.min.x + 1;
+    const long long h = static_cast<long long>(window.max.y) - window.min.y + 1;
+    if (w < 1 || h < 1 || w * h > this->MaximumNumberOfPixels)
+    {
+      vtkErrorMacro("'" << this->FileName << "' claims a " << w << " x " << h
+                        << " image; the reader takes 1 to " << this->MaximumNumberOfPixels
+                        << " pixels (MaximumNumberOfPixels).");
+      return false;
+    }
+    width = static_cast<int>(w);
+    height = static_cast<int>(h);
     const Imf::ChannelList& channels = file.header().channels();
     if (!channels.findChannel("R") || !channels.findChannel("G") || !channels.findChannel("B"))
     {
@@ -108,24 +119,30 @@ int vtkPGIEXRReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
   {
     return 0;
   }
-  std::vector<float> rgb(static_cast<std::size_t>(width) * height * 3);
+  std::vector<float> rgb;
   try
   {
+    rgb.resize(static_cast<std::size_t>(width) * height * 3);
     Imf::InputFile file(this->FileName);
     const Imath::Box2i window = file.header().dataWindow();
     Imf::FrameBuffer frame;
     const std::size_t xStride = 3 * sizeof(float), yStride = xStride * width;
-    // The base pointer is offset so the data window's corner lands on rgb[0].
-    char* base = reinterpret_cast<char*>(rgb.data()) -
-      (static_cast<std::ptrdiff_t>(window.min.x) * xStride +
-        static_cast<std::ptrdiff_t>(window.min.y) * yStride);
+    // The data window's corner lands on rgb[0]. Slice::Make offsets the
+    // base in integers: a pointer moved outside rgb is undefined (fuzzing).
     const char* names[3] = { "R", "G", "B" };
     for (int c = 0; c < 3; ++c)
     {
-      frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+      frame.insert(
+        names[c], Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, window, xStride, yStride));
     }
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro(
+      "'" << this->FileName << "': out of memory for " << width << " x " << height << " pixels.");
+    return 0;
   }
   catch (const std::exception& e)
   {
@@ -158,6 +175,12 @@ int vtkPGIEXRReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
   radiance->SetName("Radiance");
   radiance->SetNumberOfComponents(3);
   radiance->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
+  if (radiance->GetNumberOfTuples() != static_cast<vtkIdType>(width) * height)
+  {
+    vtkErrorMacro(
+      "'" << this->FileName << "': out of memory for " << width << " x " << height << " pixels.");
+    return 0;
+  }
   float* dst = radiance->GetPointer(0);
   for (int j = 0; j < height; ++j)
   {

@@ -8,7 +8,8 @@
  * lat-long environment map is (see pgiEnvironmentMap.h for the mapping).
  *
  * Errors (vtkErrorMacro, no output): missing or unreadable file, no R, G
- * and B channels, non-2:1 size when LatLong is on. NaN, Inf and negative
+ * and B channels, non-2:1 size when LatLong is on, more pixels than
+ * MaximumNumberOfPixels, memory that cannot be allocated. NaN, Inf and negative
  * texels are not radiance: they are clamped (NaN and negative to 0, +Inf to
  * ClampValue), counted in GetNumberOfClampedValues() and a field-data array
  * "ClampedValues", and reported once per file (vtkLogger, INFO: a notice
@@ -39,6 +40,12 @@ public:
   vtkSetMacro(ClampValue, double);
   vtkGetMacro(ClampValue, double);
 
+  /// The largest image read, in pixels (default 2^28: 3 GiB of float RGB, a
+  /// 23170 x 11585 lat-long map). A compressed EXR can claim far more pixels
+  /// than its size suggests, so the header's size is checked against this.
+  vtkSetClampMacro(MaximumNumberOfPixels, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(MaximumNumberOfPixels, vtkIdType);
+
   /// Texel channels clamped by the last read.
   vtkGetMacro(NumberOfClampedValues, vtkIdType);
 
@@ -53,6 +60,7 @@ protected:
   bool LatLong = true;
   double ClampValue = 65504.0;
   vtkIdType NumberOfClampedValues = 0;
+  vtkIdType MaximumNumberOfPixels = vtkIdType(1) << 28;
 
 private:
   bool ReadHeader(int& width, int& height);

@@ -171,6 +171,22 @@ bool ExtractProxyMesh(vtkPolyData* input, ProxyMesh& mesh, ProxyMeshReport& repo
     surface = triangulate->GetOutput();
   }
   std::vector<int> index(static_cast<std::size_t>(np), -1);
+  auto addCorner = [&](vtkIdType id)
+  {
+    int& slot = index[id];
+    if (slot < 0)
+    {
+      slot = mesh.NumberOfPoints();
+      double p[3];
+      points->GetPoint(id, p);
+      mesh.Points.insert(mesh.Points.end(), p, p + 3);
+      if (inputIds)
+      {
+        inputIds->push_back(id); // vtkTriangleFilter keeps point ids
+      }
+    }
+    mesh.Triangles.push_back(slot);
+  };
   vtkCellArray* triangles = surface->GetPolys();
   if (triangles)
   {
@@ -186,19 +202,40 @@ bool ExtractProxyMesh(vtkPolyData* input, ProxyMesh& mesh, ProxyMeshReport& repo
       }
       for (int k = 0; k < 3; ++k)
       {
-        int& slot = index[ids[k]];
-        if (slot < 0)
+        addCorner(ids[k]);
+      }
+    }
+  }
+  if (needsTriangulation)
+  {
+    // vtkTriangleFilter drops the corners of some degenerate polygons (a
+    // repeated point, collinear runs); found by fuzzing. Such a polygon is
+    // fanned instead, so that every corner of every polygon is bounded.
+    for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
+    {
+      if (!cells)
+      {
+        continue;
+      }
+      const bool strip = cells == input->GetStrips();
+      auto it = vtk::TakeSmartPointer(cells->NewIterator());
+      for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+      {
+        vtkIdType n;
+        const vtkIdType* ids;
+        it->GetCurrentCell(n, ids);
+        bool dropped = false;
+        for (vtkIdType k = 0; k < n && n >= 3 && !dropped; ++k)
         {
-          slot = mesh.NumberOfPoints();
-          double p[3];
-          surface->GetPoint(ids[k], p);
-          mesh.Points.insert(mesh.Points.end(), p, p + 3);
-          if (inputIds)
-          {
-            inputIds->push_back(ids[k]); // vtkTriangleFilter keeps point ids
-          }
+          dropped = index[ids[k]] < 0;
         }
-        mesh.Triangles.push_back(slot);
+        for (vtkIdType k = 1; dropped && k + 1 < n; ++k)
+        {
+          addCorner(ids[strip ? k - 1 : 0]);
+          addCorner(ids[k]);
+          addCorner(ids[k + 1]);
+          ++report.PolygonsFanned;
+        }
       }
     }
   }

@@ -40,9 +40,10 @@ struct ProxyMesh
 struct ProxyMeshReport
 {
   long long NonFinitePoints = 0;
-  long long IgnoredCells = 0;  // vertices and lines: nothing to bound
-  long long PolygonsSplit = 0; // polygons with more than 3 points, and strips
-  long long UnusedPoints = 0;  // points no triangle uses (not bounded)
+  long long IgnoredCells = 0;   // vertices and lines: nothing to bound
+  long long PolygonsSplit = 0;  // polygons with more than 3 points, and strips
+  long long PolygonsFanned = 0; // triangles fanned where vtkTriangleFilter dropped corners
+  long long UnusedPoints = 0;   // points no triangle uses (not bounded)
 };
 
 /**

@@ -58,6 +58,11 @@ namespace
 {
 bool ReadVector(const Json::Value& v, const char* key, double* out, int n, std::string& error)
 {
+  if (!v.isObject())
+  {
+    error = std::string("expected an object holding \"") + key + "\"";
+    return false;
+  }
   if (!v.isMember(key))
   {
     return true;
@@ -82,6 +87,11 @@ bool ReadVector(const Json::Value& v, const char* key, double* out, int n, std::
 
 bool ReadNumber(const Json::Value& v, const char* key, double& out, std::string& error)
 {
+  if (!v.isObject())
+  {
+    error = std::string("expected an object holding \"") + key + "\"";
+    return false;
+  }
   if (!v.isMember(key))
   {
     return true;
@@ -97,6 +107,11 @@ bool ReadNumber(const Json::Value& v, const char* key, double& out, std::string&
 
 bool ReadBool(const Json::Value& v, const char* key, bool& out, std::string& error)
 {
+  if (!v.isObject())
+  {
+    error = std::string("expected an object holding \"") + key + "\"";
+    return false;
+  }
   if (!v.isMember(key))
   {
     return true;
@@ -111,8 +126,32 @@ bool ReadBool(const Json::Value& v, const char* key, bool& out, std::string& err
 }
 } // namespace
 
+namespace
+{
+bool ParseSceneValue(const std::string& json, const std::string& baseFolder,
+  SceneDescription& scene, std::string& error);
+}
+
 bool ParseScene(const std::string& json, const std::string& baseFolder, SceneDescription& scene,
   std::string& error)
+{
+  // jsoncpp throws on a value of the wrong type where the checks below
+  // missed one (found by fuzzing): a refusal, not a crash.
+  try
+  {
+    return ParseSceneValue(json, baseFolder, scene, error);
+  }
+  catch (const std::exception& e)
+  {
+    error = std::string("malformed scene: ") + e.what();
+    return false;
+  }
+}
+
+namespace
+{
+bool ParseSceneValue(const std::string& json, const std::string& baseFolder,
+  SceneDescription& scene, std::string& error)
 {
   Json::CharReaderBuilder builder;
   std::unique_ptr<Json::CharReader> reader(builder.newCharReader());
@@ -143,8 +182,14 @@ bool ParseScene(const std::string& json, const std::string& baseFolder, SceneDes
   {
     const Json::Value& o = root["objects"][i];
     const std::string where = "object " + std::to_string(i) + ": ";
+    if (!o.isObject())
+    {
+      error = where + "must be a JSON object";
+      return false;
+    }
     SceneObject object;
-    object.Name = o.get("name", "object" + std::to_string(i)).asString();
+    object.Name = o.isMember("name") && o["name"].isString() ? o["name"].asString()
+                                                             : "object" + std::to_string(i);
     if (o.isMember("mesh"))
     {
       if (!o["mesh"].isString())
@@ -173,6 +218,12 @@ bool ParseScene(const std::string& json, const std::string& baseFolder, SceneDes
         !ReadNumber(o["sphere"], "resolution", resolution, error))
       {
         error = where + error;
+        return false;
+      }
+      // Checked before the cast: a double beyond int is undefined there.
+      if (!(resolution >= 3 && resolution <= 4096))
+      {
+        error = where + "a sphere's resolution must lie in 3..4096";
         return false;
       }
       object.SphereResolution = static_cast<int>(resolution);
@@ -209,6 +260,11 @@ bool ParseScene(const std::string& json, const std::string& baseFolder, SceneDes
   if (root.isMember("environment"))
   {
     const Json::Value& e = root["environment"];
+    if (!e.isObject())
+    {
+      error = "\"environment\" must be a JSON object";
+      return false;
+    }
     if (e.isMember("map"))
     {
       if (!e["map"].isString())
@@ -236,7 +292,8 @@ bool ParseScene(const std::string& json, const std::string& baseFolder, SceneDes
     for (const Json::Value& l : root["lights"])
     {
       SceneLight light;
-      const std::string type = l.get("type", "").asString();
+      const std::string type =
+        l.isObject() && l["type"].isString() ? l["type"].asString() : std::string();
       if (type == "sphere")
       {
         light.Sphere = true;
@@ -263,6 +320,12 @@ bool ParseScene(const std::string& json, const std::string& baseFolder, SceneDes
         error = "a light's \"type\" must be \"sphere\" or \"point\"";
         return false;
       }
+      if (light.Radius < 0.0 || light.Value[0] < 0.0 || light.Value[1] < 0.0 ||
+        light.Value[2] < 0.0)
+      {
+        error = "a light's radius, radiance and intensity must not be negative";
+        return false;
+      }
       scene.Lights.push_back(light);
     }
   }
@@ -279,13 +342,13 @@ bool ParseScene(const std::string& json, const std::string& baseFolder, SceneDes
       error = "camera: " + error;
       return false;
     }
-    scene.Size[0] = static_cast<int>(size[0]);
-    scene.Size[1] = static_cast<int>(size[1]);
-    if (scene.Size[0] < 1 || scene.Size[1] < 1 || scene.Size[0] > 16384 || scene.Size[1] > 16384)
+    if (!(size[0] >= 1 && size[1] >= 1 && size[0] <= 16384 && size[1] <= 16384))
     {
       error = "camera: size must lie in 1..16384";
       return false;
     }
+    scene.Size[0] = static_cast<int>(size[0]);
+    scene.Size[1] = static_cast<int>(size[1]);
   }
   if (root.isMember("effects"))
   {
@@ -300,6 +363,7 @@ bool ParseScene(const std::string& json, const std::string& baseFolder, SceneDes
   }
   return true;
 }
+} // namespace
 
 bool LoadScene(const std::string& path, SceneDescription& scene, std::string& error)
 {
