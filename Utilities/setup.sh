@@ -15,6 +15,7 @@ data_dir="${PROXYGI_DATA_DIR:-$here/Data}"
 # and the ParaView plugin; libvtk9-dev conflicts with python3-paraview.
 packages=(
   build-essential cmake ninja-build pkg-config file clang-format
+  clang-14 libclang-rt-14-dev clang-tidy-14
   paraview-dev python3-paraview python3-dev
   qtbase5-dev qttools5-dev libqt5x11extras5-dev libqt5svg5-dev
   qtxmlpatterns5-dev-tools libqt5opengl5-dev libdouble-conversion-dev
