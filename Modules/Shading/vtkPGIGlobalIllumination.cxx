@@ -94,6 +94,19 @@ void CutSphericalLights(const proxygi::SphericalLights& nodes,
     out.ReflectionRatio[k] = cutShare[k] > 1e-12f ? std::min(4.0f, sum / cutShare[k]) : 1.0f;
   }
 }
+// A receiver's unit normal; a zero, NaN or Inf one (vtkPolyDataNormals
+// gives NaN on degenerate triangles) faces +z rather than poisoning the
+// shading: (Inf, 0, 0) normalizes to (NaN, 0, 0) in vtkMath::Normalize.
+void UnitNormal(vtkDataArray* normals, vtkIdType i, double n[3])
+{
+  normals->GetTuple(i, n);
+  const double length = vtkMath::Normalize(n);
+  if (!(length > 0.0) || !std::isfinite(n[0] + n[1] + n[2]))
+  {
+    n[0] = n[1] = 0.0;
+    n[2] = 1.0;
+  }
+}
 } // namespace
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Lighting, vtkPGILighting);
 
@@ -303,8 +316,7 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
       continue;
     }
     double nc[3];
-    normals->GetTuple(central[k], nc);
-    vtkMath::Normalize(nc);
+    UnitNormal(normals, central[k], nc);
     const double* pc = &points[3 * central[k]];
     const float pR[3] = { float(centres[k][0]), float(centres[k][1]), float(centres[k][2]) };
     const float pf[3] = { float(pc[0]), float(pc[1]), float(pc[2]) };
@@ -402,12 +414,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
         {
           double pd[3], nd[3], albedo[3];
           receivers->GetPoint(i, pd);
-          normals->GetTuple(i, nd);
-          if (!(vtkMath::Normalize(nd) > 0.0))
-          {
-            nd[0] = nd[1] = 0.0;
-            nd[2] = 1.0;
-          }
+          UnitNormal(normals, i, nd);
           const float p[3] = { float(pd[0]), float(pd[1]), float(pd[2]) };
           const float nf[3] = { float(nd[0]), float(nd[1]), float(nd[2]) };
           float rgb[3], bounce[3] = { 0, 0, 0 }, lit[3] = { 0, 0, 0 },

@@ -47,8 +47,10 @@
  * cluster's cut of lights carries reflection ratios. It runs when some light
  * has a nonzero albedo and there is light to bounce.
  *
- * Errors: no receivers, NaN/Inf in receivers or proxies, proxies without a
- * Radius array, a bad environment.
+ * Errors: no receivers, NaN/Inf in receiver points or proxies, proxies
+ * without a Radius array, a bad environment. A zero, NaN or Inf normal (as
+ * vtkPolyDataNormals gives degenerate triangles) is not an error: that
+ * receiver is shaded as if it faced +z.
  */
 #ifndef vtkPGIGlobalIllumination_h
 #define vtkPGIGlobalIllumination_h
