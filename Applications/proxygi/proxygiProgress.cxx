@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <unistd.h>
@@ -61,7 +62,7 @@ struct Progress::Internals
     if (this->Terminal)
     {
       constexpr int width = 30;
-      const int filled = static_cast<int>(fraction * width + 0.5);
+      const int filled = static_cast<int>(std::lround(fraction * width));
       std::fprintf(stderr, "\r%s [%.*s%*s] %3.0f%%%s   ", this->What.c_str(), filled,
         "##############################", width - filled, "", 100.0 * fraction, eta);
       std::fflush(stderr);

@@ -196,8 +196,9 @@ int RunRenderAnalytic(const Args& args)
       float zh[MaxOrder], f[MaxCoefficients], g[MaxCoefficients];
       for (vtkIdType p = begin; p < end; ++p)
       {
-        const double x = -scene.Extent + (p % size + 0.5) * pixelSize;
-        const double y = scene.Extent - (p / size + 0.5) * pixelSize;
+        const vtkIdType row = p / size, column = p % size;
+        const double x = -scene.Extent + (static_cast<double>(column) + 0.5) * pixelSize;
+        const double y = scene.Extent - (static_cast<double>(row) + 0.5) * pixelSize;
         const double dx = cx - x, dy = cy - y, dz = cz;
         const double d2 = dx * dx + dy * dy + dz * dz;
         if (dx * dx + dy * dy < r * r)

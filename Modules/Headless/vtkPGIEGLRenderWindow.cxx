@@ -126,6 +126,7 @@ struct vtkPGIEGLRenderWindow::Internals
 vtkPGIEGLRenderWindow::vtkPGIEGLRenderWindow()
   : EGL(new Internals)
 {
+  this->DeviceIndex = -1;
   if (const char* env = std::getenv("PROXYGI_EGL_DEVICE"))
   {
     char* end = nullptr;

@@ -38,9 +38,8 @@ public:
   vtkTypeMacro(vtkPGIEGLRenderWindow, vtkPGIContextRenderWindow);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// EGL device index (-1: automatic). Takes effect before the context exists.
-  vtkSetMacro(DeviceIndex, int);
-  vtkGetMacro(DeviceIndex, int);
+  // DeviceIndex is vtkRenderWindow's (Set/GetDeviceIndex): here -1, the
+  // default, means automatic. It takes effect before the context exists.
 
   // CreateContext() (vtkPGIContextRenderWindow) makes the EGL display,
   // context and surface.
@@ -68,7 +67,6 @@ protected:
   const char* GetContextKind() const override { return "EGL"; }
   bool EnsureSurface();
 
-  int DeviceIndex = -1;
   std::string PlatformDescription;
 
 private:

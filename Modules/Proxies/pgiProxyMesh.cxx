@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 
 namespace proxygi
@@ -169,6 +170,15 @@ bool ExtractProxyMesh(vtkPolyData* input, ProxyMesh& mesh, ProxyMeshReport& repo
     triangulate->PassLinesOff();
     triangulate->Update();
     surface = triangulate->GetOutput();
+  }
+  // Indices are int, and 3 x index must stay in range.
+  constexpr vtkIdType MaxElements = std::numeric_limits<int>::max() / 3;
+  if (np > MaxElements || surface->GetNumberOfPolys() > MaxElements)
+  {
+    error = "the mesh has " + std::to_string(np) + " points and " +
+      std::to_string(surface->GetNumberOfPolys()) + " triangles; at most " +
+      std::to_string(MaxElements) + " of each";
+    return false;
   }
   std::vector<int> index(static_cast<std::size_t>(np), -1);
   auto addCorner = [&](vtkIdType id)

@@ -253,7 +253,7 @@ void BestRigidMotion(const double* rest, const double* moved, std::size_t n, dou
   }
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix3d v = svd.matrixV();
-  const Eigen::Matrix3d u = svd.matrixU();
+  const Eigen::Matrix3d& u = svd.matrixU();
   if ((v * u.transpose()).determinant() < 0.0)
   {
     v.col(2) *= -1.0; // no reflections: flip the least constrained axis

@@ -707,7 +707,8 @@ struct SphereSetBuilder::Internal
           double fx = f(x);
           // Also try the cluster's mean: the old centre may be far off.
           double mean[3] = { 0, 0, 0 };
-          const double n = static_cast<double>(p.size() / 3);
+          const std::size_t points = p.size() / 3;
+          const double n = static_cast<double>(points);
           for (std::size_t i = 0; i < p.size(); i += 3)
           {
             for (int q = 0; q < 3; ++q)

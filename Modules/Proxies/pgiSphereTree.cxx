@@ -182,7 +182,7 @@ void Balance(const std::vector<Sphere>& s, std::vector<int>& assign, int branchi
         double bestD = std::numeric_limits<double>::max();
         for (std::size_t o = 0; o < members.size(); ++o)
         {
-          if (o == c || members[o].size() >= static_cast<std::size_t>(2 * branching))
+          if (o == c || members[o].size() >= 2 * static_cast<std::size_t>(branching))
           {
             continue;
           }
@@ -201,7 +201,7 @@ void Balance(const std::vector<Sphere>& s, std::vector<int>& assign, int branchi
           changed = 1;
         }
       }
-      else if (members[c].size() > static_cast<std::size_t>(2 * branching))
+      else if (members[c].size() > 2 * static_cast<std::size_t>(branching))
       {
         // Two seeds: the member farthest from the centre, then the one
         // farthest from it; each member goes to the nearer seed.
@@ -247,6 +247,7 @@ void BuildSphereTree(std::vector<Sphere>& nodes, std::vector<int>& level,
     const int k = std::max(
       1, std::min(n - 1, static_cast<int>(std::lround(static_cast<double>(n) / branching))));
     std::vector<Sphere> spheres;
+    spheres.reserve(current.size());
     for (long long i : current)
     {
       spheres.push_back(nodes[i]);
@@ -267,6 +268,7 @@ void BuildSphereTree(std::vector<Sphere>& nodes, std::vector<int>& level,
         continue;
       }
       std::vector<Sphere> children;
+      children.reserve(group.size());
       for (int i : group)
       {
         children.push_back(spheres[i]);

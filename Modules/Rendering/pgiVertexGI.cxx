@@ -689,7 +689,7 @@ void VertexGI::SetShaderParameters(
   // The results buffer may have been reallocated since the VAO last saw it.
   cellBO.VAO->Bind();
   if (!cellBO.VAO->AddAttributeArray(program, g.Results.GetPointer(), "pgiRadianceMC", 0,
-        static_cast<size_t>(4 * g.ResultFloats), VTK_FLOAT, 4, false))
+        4 * static_cast<size_t>(g.ResultFloats), VTK_FLOAT, 4, false))
   {
     vtkErrorWithObjectMacro(owner, "Could not bind the GI results.");
   }

@@ -205,7 +205,7 @@ bool ParseSceneValue(const std::string& json, const std::string& baseFolder,
       if (!ReadVector(o["plane"], "center", object.PlaneCenter, 3, error) ||
         !ReadNumber(o["plane"], "size", object.PlaneSize, error))
       {
-        error = where + error;
+        error.insert(0, where);
         return false;
       }
     }
@@ -217,7 +217,7 @@ bool ParseSceneValue(const std::string& json, const std::string& baseFolder,
         !ReadNumber(o["sphere"], "radius", object.SphereRadius, error) ||
         !ReadNumber(o["sphere"], "resolution", resolution, error))
       {
-        error = where + error;
+        error.insert(0, where);
         return false;
       }
       // Checked before the cast: a double beyond int is undefined there.
@@ -238,7 +238,7 @@ bool ParseSceneValue(const std::string& json, const std::string& baseFolder,
       !ReadNumber(o, "scale", object.Scale, error) ||
       !ReadVector(o, "albedo", object.Albedo, 3, error))
     {
-      error = where + error;
+      error.insert(0, where);
       return false;
     }
     for (double a : object.Albedo)
@@ -301,7 +301,7 @@ bool ParseSceneValue(const std::string& json, const std::string& baseFolder,
           !ReadNumber(l, "radius", light.Radius, error) ||
           !ReadVector(l, "radiance", light.Value, 3, error))
         {
-          error = "sphere light: " + error;
+          error.insert(0, "sphere light: ");
           return false;
         }
       }
@@ -311,7 +311,7 @@ bool ParseSceneValue(const std::string& json, const std::string& baseFolder,
         if (!ReadVector(l, "position", light.Position, 3, error) ||
           !ReadVector(l, "intensity", light.Value, 3, error))
         {
-          error = "point light: " + error;
+          error.insert(0, "point light: ");
           return false;
         }
       }
@@ -486,7 +486,7 @@ bool BuildScene(const SceneDescription& scene, LoadedScene& loaded, std::string&
       mesh = ReadMesh(path, error);
       if (!mesh)
       {
-        error = object.Name + ": " + error;
+        error.insert(0, ": ").insert(0, object.Name);
         return false;
       }
     }

@@ -95,7 +95,7 @@ void EnvironmentShading::Shade(const float n[3], const float* g, float rgb[3]) c
   const float fu = std::min(1.0f, std::max(0.0f, u - i)),
               fv = std::min(1.0f, std::max(0.0f, v - j));
   const float w[4] = { (1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv };
-  const std::size_t stride = static_cast<std::size_t>(this->Width + 1);
+  const std::size_t stride = static_cast<std::size_t>(this->Width) + 1;
   const std::size_t corners[4] = { j * stride + i, j * stride + i + 1, (j + 1) * stride + i,
     (j + 1) * stride + i + 1 };
   for (int c = 0; c < 3; ++c)

@@ -450,7 +450,7 @@ bool vtkPGIGIBake::PrepareSphericalLights()
   if (b.RunShadowed && b.UseHierarchy)
   {
     // The leaves alone: what receivers use without a cut, and the ratios' reference.
-    const std::size_t n2s = static_cast<std::size_t>(3 * b.Order * b.Order);
+    const std::size_t n2s = 3 * static_cast<std::size_t>(b.Order) * b.Order;
     for (std::size_t i = 0; i < b.Lights.Count(); ++i)
     {
       if (b.Lights.Level[i] != 0)

@@ -54,7 +54,7 @@ void CutSphericalLights(const proxygi::SphericalLights& nodes,
   const proxygi::Blockers& planes, const proxygi::ShadowedIndirect& kernel, const float p[3],
   const float n[3], proxygi::SphericalLights& out)
 {
-  const std::size_t n2 = static_cast<std::size_t>(nodes.Order * nodes.Order);
+  const std::size_t n2 = static_cast<std::size_t>(nodes.Order) * nodes.Order;
   out = proxygi::SphericalLights();
   out.Order = nodes.Order;
   for (int node : cut)

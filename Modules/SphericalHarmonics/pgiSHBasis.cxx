@@ -265,6 +265,8 @@ void Project(int order, const SphericalFunction& f, const SphereQuadrature& rule
   }
 }
 
+// T is a type here: it cannot take the parentheses the check asks for.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define PGI_INSTANTIATE(T)                                                                         \
   template PROXYGISPHERICALHARMONICS_EXPORT void EvaluateBasis<T>(int, T, T, T, T*);               \
   template PROXYGISPHERICALHARMONICS_EXPORT void EvaluateBasisPolynomial<T>(int, T, T, T, T*);     \
@@ -273,6 +275,7 @@ void Project(int order, const SphericalFunction& f, const SphereQuadrature& rule
 PGI_INSTANTIATE(float)
 PGI_INSTANTIATE(double)
 #undef PGI_INSTANTIATE
+// NOLINTEND(bugprone-macro-parentheses)
 
 } // namespace sh
 } // namespace proxygi

@@ -391,12 +391,15 @@ void ExpByProjection(int order, const double* f, double* g)
     rule, g);
 }
 
+// T is a type here: it cannot take the parentheses the check asks for.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define PGI_INSTANTIATE(T)                                                                         \
   template PROXYGISPHERICALHARMONICS_EXPORT Status Exp<T>(int, const T*, T*, const ExpOptions&);   \
   template PROXYGISPHERICALHARMONICS_EXPORT bool GuardRange<T>(int, T*, double);
 PGI_INSTANTIATE(float)
 PGI_INSTANTIATE(double)
 #undef PGI_INSTANTIATE
+// NOLINTEND(bugprone-macro-parentheses)
 
 } // namespace sh
 } // namespace proxygi

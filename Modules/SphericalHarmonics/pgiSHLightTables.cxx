@@ -836,6 +836,8 @@ void AnalyticLightTables::Evaluate(const T normal[3], const T d[3], T theta, T* 
     ca * normal[2] + sa * t[2], out);
 }
 
+// T is a type here: it cannot take the parentheses the check asks for.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define PGI_INSTANTIATE(T)                                                                         \
   template PROXYGISPHERICALHARMONICS_EXPORT void ApplyExactIndirectBlocks<T>(                      \
     int, const T*, const T*, T*);                                                                  \
@@ -859,6 +861,7 @@ void AnalyticLightTables::Evaluate(const T normal[3], const T d[3], T theta, T* 
 PGI_INSTANTIATE(float)
 PGI_INSTANTIATE(double)
 #undef PGI_INSTANTIATE
+// NOLINTEND(bugprone-macro-parentheses)
 
 } // namespace sh
 } // namespace proxygi

@@ -226,6 +226,8 @@ void TripleProduct::ProductMatrix(const T* f, T* matrix) const
   }
 }
 
+// T is a type here: it cannot take the parentheses the check asks for.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define PGI_INSTANTIATE(T)                                                                         \
   template PROXYGISPHERICALHARMONICS_EXPORT void TripleProduct::Product<T>(const T*, const T*, T*) \
     const;                                                                                         \
@@ -235,6 +237,7 @@ void TripleProduct::ProductMatrix(const T* f, T* matrix) const
 PGI_INSTANTIATE(float)
 PGI_INSTANTIATE(double)
 #undef PGI_INSTANTIATE
+// NOLINTEND(bugprone-macro-parentheses)
 
 } // namespace sh
 } // namespace proxygi

@@ -160,6 +160,8 @@ void Window(int order, T* f, double h)
   }
 }
 
+// T is a type here: it cannot take the parentheses the check asks for.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define PGI_INSTANTIATE(T)                                                                         \
   template PROXYGISPHERICALHARMONICS_EXPORT void RotateZonal<T>(int, const T*, T, T, T, T*);       \
   template PROXYGISPHERICALHARMONICS_EXPORT void RotateScaledZonal<T>(int, const T*, T, T, T, T*); \
@@ -168,6 +170,7 @@ void Window(int order, T* f, double h)
 PGI_INSTANTIATE(float)
 PGI_INSTANTIATE(double)
 #undef PGI_INSTANTIATE
+// NOLINTEND(bugprone-macro-parentheses)
 
 } // namespace sh
 } // namespace proxygi

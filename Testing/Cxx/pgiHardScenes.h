@@ -117,6 +117,7 @@ inline std::vector<HardScene> HardScenes()
   {
     // 1000 overlapping spheres over a ground, a receiver sphere inside them.
     std::vector<std::array<double, 5>> s;
+    s.reserve(1000);
     for (int k = 0; k < 1000; ++k)
     {
       s.push_back(

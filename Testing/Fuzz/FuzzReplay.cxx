@@ -55,7 +55,9 @@ int main(int argc, char* argv[])
       std::sort(names.begin(), names.end());
       for (const std::string& name : names)
       {
-        replayed += Replay(path + "/" + name) ? 1 : 0;
+        std::string file = path;
+        file.append("/").append(name);
+        replayed += Replay(file) ? 1 : 0;
       }
     }
     else

@@ -18,7 +18,7 @@ namespace
 {
 std::string WriteTemp(const char* name, const char* text)
 {
-  const std::string path = std::string("/tmp/pgi-") + name + ".off";
+  std::string path = std::string("/tmp/pgi-") + name + ".off";
   std::ofstream(path) << text;
   return path;
 }

@@ -103,7 +103,7 @@ int main(int argc, char* argv[])
   for (const std::string& name : meshes)
   {
     vtkNew<vtkPGIOFFReader> reader;
-    const std::string path = data + "/meshes/" + name + ".off";
+    const std::string path = data + "/meshes/" + (name + ".off");
     reader->SetFileName(path.c_str());
     reader->Update();
     vtkPolyData* mesh = reader->GetOutput();

@@ -99,6 +99,7 @@ int TestProxiesSphereMath(int, char*[])
     }
   }
   std::vector<Sphere> ring;
+  ring.reserve(12);
   for (int i = 0; i < 12; ++i)
   {
     ring.push_back({ { 5 * std::cos(2 * Pi * i / 12), 5 * std::sin(2 * Pi * i / 12), 1 }, 1.0 });
@@ -167,6 +168,7 @@ int TestProxiesSphereMath(int, char*[])
   // Hierarchy over 500 random spheres: bounding, depth ~ log4(500), 2 to 8
   // children per parent, about 4 on average.
   std::vector<Sphere> nodes;
+  nodes.reserve(500);
   for (int i = 0; i < 500; ++i)
   {
     nodes.push_back(

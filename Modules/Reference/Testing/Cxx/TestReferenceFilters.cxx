@@ -26,7 +26,6 @@
 
 namespace
 {
-const double Pi = 3.14159265358979323846;
 
 vtkSmartPointer<vtkPolyData> OneSphere(double x, double y, double z, double r)
 {
