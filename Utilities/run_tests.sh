@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Set up, build and run the default test suite (ctest, excluding the tests
 # labelled 'slow'), then clang-tidy (Utilities/run_clang_tidy.sh), then the
-# CPU suite under the sanitizers (Utilities/run_sanitized_tests.sh). Exits
-# non-zero on any failure. The tests run without a display (GL through EGL,
-# llvmpipe or the GPU); one test runs the GLX path under a virtual X server
-# (ProxyGI-GLX-OffscreenWindow). No test is retried, except that one on the
-# one known flake of Xvfb (the X server refusing the connection at start-up;
-# Testing/run_under_xvfb.sh), which is reported.
+# CPU suite under ASan+UBSan and under TSan (Utilities/run_sanitized_tests.sh).
+# Exits non-zero on any failure. The tests run without a display (GL through
+# EGL, llvmpipe or the GPU); one test runs the GLX path under a virtual X
+# server (ProxyGI-GLX-OffscreenWindow). No test is retried, except that one
+# on the one known flake of Xvfb (the X server refusing the connection at
+# start-up; Testing/run_under_xvfb.sh), which is reported.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${PROXYGI_BUILD_DIR:-$here/build}"
@@ -25,6 +25,11 @@ fi
 # Then the CPU suite under AddressSanitizer and UBSan, in its own build tree
 # (PROXYGI_SANITIZERS=0 skips it).
 if [ "${PROXYGI_SANITIZERS:-1}" != 0 ]; then
-  "$here/Utilities/run_sanitized_tests.sh" || status=$?
+  "$here/Utilities/run_sanitized_tests.sh" address || status=$?
+fi
+# And the module tests under ThreadSanitizer, in build-tsan/ (PROXYGI_TSAN=0
+# skips it).
+if [ "${PROXYGI_TSAN:-1}" != 0 ]; then
+  "$here/Utilities/run_sanitized_tests.sh" thread || status=$?
 fi
 exit "$status"
