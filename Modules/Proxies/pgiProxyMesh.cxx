@@ -2,17 +2,20 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkTriangleFilter.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <numeric>
 
 namespace proxygi
@@ -118,6 +121,21 @@ bool ExtractProxyMesh(vtkPolyData* input, ProxyMesh& mesh, ProxyMeshReport& repo
   {
     error = "the mesh has no points";
     return false;
+  }
+  vtkSmartPointer<vtkPolyData> owned;
+  if (vtkUnsignedCharArray* ghosts = input->GetCellGhostArray())
+  {
+    for (vtkIdType c = 0; c < ghosts->GetNumberOfValues(); ++c)
+    {
+      report.GhostCells += (ghosts->GetValue(c) & vtkDataSetAttributes::DUPLICATECELL) ? 1 : 0;
+    }
+    if (report.GhostCells > 0)
+    {
+      owned = vtkSmartPointer<vtkPolyData>::New();
+      owned->DeepCopy(input);
+      owned->RemoveGhostCells();
+      input = owned;
+    }
   }
   vtkPoints* points = input->GetPoints();
   const vtkIdType np = input->GetNumberOfPoints();
@@ -328,6 +346,87 @@ void SplitComponents(const ProxyMesh& mesh, std::vector<ProxyMesh>& parts)
   {
     part.Analyse();
   }
+}
+
+int CapBoundaryLoops(ProxyMesh& mesh)
+{
+  // Undirected edge -> how many triangles use it, and its direction in the last one.
+  std::map<std::pair<int, int>, std::pair<int, std::pair<int, int>>> edges;
+  const int nt = mesh.NumberOfTriangles();
+  for (int t = 0; t < nt; ++t)
+  {
+    const int* v = mesh.Triangles.data() + 3 * t;
+    for (int e = 0; e < 3; ++e)
+    {
+      const int a = v[e], b = v[(e + 1) % 3];
+      if (a == b)
+      {
+        continue;
+      }
+      auto& entry = edges[{ std::min(a, b), std::max(a, b) }];
+      ++entry.first;
+      entry.second = { a, b };
+    }
+  }
+  // The cap runs against the boundary edges' direction: b -> a.
+  std::multimap<int, int> next;
+  for (const auto& e : edges)
+  {
+    if (e.second.first == 1)
+    {
+      next.emplace(e.second.second.second, e.second.second.first);
+    }
+  }
+  int capped = 0;
+  while (!next.empty())
+  {
+    std::vector<int> loop{ next.begin()->first };
+    int at = next.begin()->second;
+    next.erase(next.begin());
+    bool closed = false;
+    while (true)
+    {
+      if (at == loop.front())
+      {
+        closed = true;
+        break;
+      }
+      auto it = next.find(at);
+      if (it == next.end())
+      {
+        break;
+      }
+      loop.push_back(at);
+      at = it->second;
+      next.erase(it);
+    }
+    if (!closed || loop.size() < 3)
+    {
+      continue;
+    }
+    double centre[3] = { 0, 0, 0 };
+    for (int v : loop)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        centre[k] += mesh.Point(v)[k] / static_cast<double>(loop.size());
+      }
+    }
+    const int c = mesh.NumberOfPoints();
+    mesh.Points.insert(mesh.Points.end(), centre, centre + 3);
+    for (std::size_t i = 0; i < loop.size(); ++i)
+    {
+      mesh.Triangles.push_back(loop[i]);
+      mesh.Triangles.push_back(loop[(i + 1) % loop.size()]);
+      mesh.Triangles.push_back(c);
+    }
+    ++capped;
+  }
+  if (capped > 0)
+  {
+    mesh.Analyse();
+  }
+  return capped;
 }
 
 void AppendMesh(ProxyMesh& to, const ProxyMesh& from)

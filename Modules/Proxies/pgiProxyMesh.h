@@ -44,12 +44,15 @@ struct ProxyMeshReport
   long long PolygonsSplit = 0;  // polygons with more than 3 points, and strips
   long long PolygonsFanned = 0; // triangles fanned where vtkTriangleFilter dropped corners
   long long UnusedPoints = 0;   // points no triangle uses (not bounded)
+  long long GhostCells = 0;     // duplicated cells of a distributed piece: left out
 };
 
 /**
  * Triangles of a vtkPolyData (polygons and triangle strips; polygons with
  * more than three points are triangulated with vtkTriangleFilter). Fails,
  * with a message, on NaN/Inf coordinates or when nothing is left to bound.
+ * Cells marked as ghosts (vtkGhostType DUPLICATECELL: another rank owns
+ * them) are left out, so that a distributed mesh bounds each cell once.
  * `inputIds` (optional) receives the input point id of each mesh vertex.
  */
 bool ExtractProxyMesh(vtkPolyData* input, ProxyMesh& mesh, ProxyMeshReport& report,
@@ -60,6 +63,16 @@ void SplitComponents(const ProxyMesh& mesh, std::vector<ProxyMesh>& parts);
 
 /// Appends the triangles of `from` to `to` (then call Analyse()).
 void AppendMesh(ProxyMesh& to, const ProxyMesh& from);
+
+/**
+ * Closes the holes of an open mesh: each loop of boundary edges gets a fan
+ * of triangles to a new vertex at the loop's centroid, oriented like the
+ * triangles around it. A distributed piece of a closed object is open along
+ * its cut; capped, it encloses its share of the volume again, so its inside
+ * (interior samples, outside volume) is defined. Boundary chains that do not
+ * close are left open. Returns the loops capped (then Analyse() has run).
+ */
+int CapBoundaryLoops(ProxyMesh& mesh);
 } // namespace proxygi
 
 #endif

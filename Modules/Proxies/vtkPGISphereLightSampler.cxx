@@ -1,10 +1,12 @@
 #include "vtkPGISphereLightSampler.h"
 
 #include "pgiMaterial.h"
+#include "pgiParallel.h"
 #include "pgiSHBasis.h"
 #include "pgiSHSphericalLight.h"
 
 #include "vtkCellArray.h"
+#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -12,6 +14,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -48,9 +51,78 @@ struct Mesh
 struct Sample
 {
   int Rule = 0; // 1, 2 (discarded), 3, 0 (nothing)
-  double P[3], N[3];
-  float Albedo[3];
+  double P[3] = { 0, 0, 0 }, N[3] = { 0, 0, 0 };
+  float Albedo[3] = { 0, 0, 0 };
 };
+
+// What one rank's piece of the mesh offers for one ray, as doubles so that
+// ranks can exchange it: the rule it would apply alone (0 nothing, 1 an
+// in-segment forward hit, 2 forward hits none in the segment, 3 an
+// in-segment backward hit, looked for only without forward hits), the hit's
+// distance along its ray, position, normal and albedo.
+constexpr int CandidateSize = 11;
+struct Candidate
+{
+  double V[CandidateSize] = { 0, -1, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+  int Rule() const { return static_cast<int>(this->V[0]); }
+  double Distance() const { return this->V[1]; }
+};
+
+Candidate CandidateOf(const Sample& s, double t)
+{
+  Candidate c;
+  c.V[0] = s.Rule;
+  c.V[1] = t;
+  for (int k = 0; k < 3; ++k)
+  {
+    c.V[2 + k] = s.P[k];
+    c.V[5 + k] = s.N[k];
+    c.V[8 + k] = s.Albedo[k];
+  }
+  return c;
+}
+
+// The three rules over the union of the ranks' pieces: the farthest
+// in-segment forward hit of any rank; else none if any rank saw a forward
+// hit; else the nearest in-segment backward hit (ties: the lower rank).
+Sample Combine(const double* candidates, int ranks, std::size_t stride)
+{
+  int best = -1, rule = 0;
+  for (int r = 0; r < ranks; ++r)
+  {
+    const double* c = candidates + r * stride;
+    const int cr = static_cast<int>(c[0]);
+    auto better = [&]
+    {
+      if (rule != cr)
+      {
+        // 1 beats 2 beats 3 beats 0.
+        const int rank[4] = { 3, 0, 1, 2 };
+        return rank[cr] < rank[rule];
+      }
+      return (cr == 1 && c[1] > candidates[best * stride + 1]) ||
+        (cr == 3 && c[1] < candidates[best * stride + 1]);
+    };
+    if (cr != 0 && (best < 0 || better()))
+    {
+      best = r;
+      rule = cr;
+    }
+  }
+  Sample s;
+  s.Rule = rule;
+  if (rule == 1 || rule == 3)
+  {
+    const double* c = candidates + best * stride;
+    for (int k = 0; k < 3; ++k)
+    {
+      s.P[k] = c[2 + k];
+      s.N[k] = c[5 + k];
+      s.Albedo[k] = static_cast<float>(c[8 + k]);
+    }
+  }
+  return s;
+}
 
 struct Sampler
 {
@@ -142,57 +214,72 @@ struct Sampler
     }
   }
 
-  Sample Find(int i, const double w[3]) const
+  Candidate Find(int i, const double w[3]) const
   {
     const double* x = &(*this->Centres)[4 * i];
     Sample best;
     bool any = false;
-    this->Hits(x, w, w,
-      [&](const Sample& s)
-      {
-        any = true;
-        if (this->InSegment(i, s.P))
+    auto distance = [&](const Sample& s)
+    {
+      return std::sqrt((s.P[0] - x[0]) * (s.P[0] - x[0]) + (s.P[1] - x[1]) * (s.P[1] - x[1]) +
+        (s.P[2] - x[2]) * (s.P[2] - x[2]));
+    };
+    if (this->Object)
+    {
+      this->Hits(x, w, w,
+        [&](const Sample& s)
         {
-          best = s; // hits come in order: the last one kept is the farthest
-          best.Rule = 1;
-        }
-        return true;
-      });
+          any = true;
+          if (this->InSegment(i, s.P))
+          {
+            best = s; // hits come in order: the last one kept is the farthest
+            best.Rule = 1;
+          }
+          return true;
+        });
+    }
     if (best.Rule == 1)
     {
-      return best;
+      return CandidateOf(best, distance(best));
     }
     if (any)
     {
       best.Rule = 2;
-      return best;
+      return CandidateOf(best, -1.0);
     }
     const double back[3] = { -w[0], -w[1], -w[2] };
-    this->Hits(x, back, w,
-      [&](const Sample& s)
-      {
-        if (this->InSegment(i, s.P))
+    if (this->Object)
+    {
+      this->Hits(x, back, w,
+        [&](const Sample& s)
         {
-          best = s;
-          best.Rule = 3;
-          return false;
-        }
-        return true;
-      });
-    return best;
+          if (this->InSegment(i, s.P))
+          {
+            best = s;
+            best.Rule = 3;
+            return false;
+          }
+          return true;
+        });
+    }
+    return CandidateOf(best, best.Rule == 3 ? distance(best) : -1.0);
   }
 };
 } // namespace
+
+vtkCxxSetObjectMacro(vtkPGISphereLightSampler, Controller, vtkMultiProcessController);
 
 vtkPGISphereLightSampler::vtkPGISphereLightSampler()
 {
   this->SetNumberOfInputPorts(2);
   this->SetAlbedoArrayName("Albedo");
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
 vtkPGISphereLightSampler::~vtkPGISphereLightSampler()
 {
   this->SetAlbedoArrayName(nullptr);
+  this->SetController(nullptr);
 }
 
 void vtkPGISphereLightSampler::PrintSelf(ostream& os, vtkIndent indent)
@@ -205,6 +292,8 @@ void vtkPGISphereLightSampler::PrintSelf(ostream& os, vtkIndent indent)
      << " " << this->DefaultAlbedo[2] << "\n";
   os << indent << "AlbedoArrayName: " << (this->AlbedoArrayName ? this->AlbedoArrayName : "(none)")
      << "\n";
+  os << indent << "Controller: " << this->Controller << " ("
+     << proxygi::parallel::Ranks(this->Controller) << " ranks)\n";
 }
 
 int vtkPGISphereLightSampler::FillInputPortInformation(int, vtkInformation* info)
@@ -219,35 +308,44 @@ int vtkPGISphereLightSampler::RequestData(
   vtkPolyData* input = vtkPolyData::GetData(in[0]);
   vtkPolyData* proxies = vtkPolyData::GetData(in[1]);
   vtkPolyData* output = vtkPolyData::GetData(out);
-  if (!input || input->GetNumberOfPoints() == 0 || !proxies || proxies->GetNumberOfPoints() == 0)
+  // Under MPI each rank holds a piece of the mesh and the global proxies;
+  // every rank reaches every collective below.
+  vtkMultiProcessController* controller = proxygi::parallel::Active(this->Controller);
+  proxygi::parallel::Traffic traffic;
+  std::string error;
+  const bool emptyPiece = controller && (!input || input->GetNumberOfPoints() == 0);
+  vtkDataArray* radius = proxies ? proxies->GetPointData()->GetArray("Radius") : nullptr;
+  if ((!emptyPiece && (!input || input->GetNumberOfPoints() == 0)) || !proxies ||
+    proxies->GetNumberOfPoints() == 0)
   {
-    vtkErrorMacro("Need a mesh (input 0) and proxies (input 1), both non-empty.");
-    return 0;
+    error = "Need a mesh (input 0) and proxies (input 1), both non-empty.";
   }
-  vtkDataArray* radius = proxies->GetPointData()->GetArray("Radius");
-  if (!radius)
+  else if (!radius)
   {
-    vtkErrorMacro("The proxies (input 1) need a \"Radius\" point array.");
-    return 0;
+    error = "The proxies (input 1) need a \"Radius\" point array.";
   }
+  vtkNew<vtkPolyData> nothing;
   vtkNew<vtkTriangleFilter> triangulate;
-  triangulate->SetInputData(input);
+  triangulate->SetInputData(emptyPiece || !input ? nothing.Get() : input);
   triangulate->PassVertsOff();
   triangulate->PassLinesOff();
-  triangulate->Update();
+  if (error.empty() && !emptyPiece)
+  {
+    triangulate->Update();
+  }
   vtkPolyData* tris = triangulate->GetOutput();
-  const vtkIdType np = tris->GetNumberOfPoints();
+  const vtkIdType np = error.empty() ? tris->GetNumberOfPoints() : 0;
   Mesh mesh;
   mesh.Points.resize(3 * np);
   mesh.Albedo.resize(3 * np);
-  for (vtkIdType i = 0; i < np; ++i)
+  for (vtkIdType i = 0; i < np && error.empty(); ++i)
   {
     double p[3], a[3];
     tris->GetPoint(i, p);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
     {
-      vtkErrorMacro("Mesh point " << i << " has a NaN or Inf coordinate.");
-      return 0;
+      error = "Mesh point " + std::to_string(i) + " has a NaN or Inf coordinate.";
+      break;
     }
     proxygi::AlbedoOf(tris, this->AlbedoArrayName, i, this->DefaultAlbedo, a);
     for (int k = 0; k < 3; ++k)
@@ -256,12 +354,12 @@ int vtkPGISphereLightSampler::RequestData(
       mesh.Albedo[3 * i + k] = static_cast<float>(a[k]);
     }
   }
-  const vtkIdType ns = proxies->GetNumberOfPoints();
+  const vtkIdType ns = error.empty() ? proxies->GetNumberOfPoints() : 0;
   std::vector<double> spheres(4 * ns);
   std::vector<int> sphereObject(ns, 0), sphereLevel(ns, 0);
-  vtkDataArray* objectIds = proxies->GetPointData()->GetArray("ObjectId");
-  vtkDataArray* levels = proxies->GetPointData()->GetArray("Level");
-  for (vtkIdType i = 0; i < ns; ++i)
+  vtkDataArray* objectIds = error.empty() ? proxies->GetPointData()->GetArray("ObjectId") : nullptr;
+  vtkDataArray* levels = error.empty() ? proxies->GetPointData()->GetArray("Level") : nullptr;
+  for (vtkIdType i = 0; i < ns && error.empty(); ++i)
   {
     proxies->GetPoint(i, &spheres[4 * i]);
     spheres[4 * i + 3] = radius->GetTuple1(i);
@@ -269,8 +367,7 @@ int vtkPGISphereLightSampler::RequestData(
     {
       if (!std::isfinite(spheres[4 * i + k]))
       {
-        vtkErrorMacro("Proxy " << i << " has a NaN or Inf centre or radius.");
-        return 0;
+        error = "Proxy " + std::to_string(i) + " has a NaN or Inf centre or radius.";
       }
     }
     if (!(spheres[4 * i + 3] > 0.0))
@@ -280,13 +377,26 @@ int vtkPGISphereLightSampler::RequestData(
     sphereObject[i] = objectIds ? static_cast<int>(objectIds->GetTuple1(i)) : 0;
     sphereLevel[i] = levels ? static_cast<int>(levels->GetTuple1(i)) : 0;
   }
+  // The ranks must sample one global set (Sphere Proxies' output is).
+  const std::vector<long long> sets =
+    proxygi::parallel::AllGatherCounts(controller, static_cast<long long>(ns), &traffic);
+  if (error.empty() && std::any_of(sets.begin(), sets.end(), [&](long long n) { return n != ns; }))
+  {
+    error = "the ranks hold different proxy sets (" + std::to_string(ns) +
+      " spheres here): give every rank the global set (Sphere Proxies or Gather Proxies)";
+  }
+  std::string agreed;
+  if (!proxygi::parallel::AllOk(controller, error.empty(), error, agreed, &traffic))
+  {
+    vtkErrorMacro(<< agreed);
+    return 0;
+  }
 
   // Embree: one scene per object.
   RTCDevice device = rtcNewDevice(nullptr);
   if (!device)
   {
-    vtkErrorMacro("Embree could not create a device.");
-    return 0;
+    error = "Embree could not create a device.";
   }
   vtkDataArray* pointObject = tris->GetPointData()->GetArray("ObjectId");
   std::map<int, ObjectScene> objects;
@@ -294,7 +404,7 @@ int vtkPGISphereLightSampler::RequestData(
   vtkCellArray* polys = tris->GetPolys();
   vtkIdType npts;
   const vtkIdType* ids;
-  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+  for (polys->InitTraversal(); device && polys->GetNextCell(npts, ids);)
   {
     if (npts != 3)
     {
@@ -332,6 +442,12 @@ int vtkPGISphereLightSampler::RequestData(
     rtcReleaseGeometry(geometry);
     rtcCommitScene(o.Scene);
   }
+  // The whole mesh's extent sets the step between hits, on every rank alike.
+  for (int c = 0; c < 3; ++c)
+  {
+    lo[c] = -proxygi::parallel::Max(controller, -lo[c]);
+    hi[c] = proxygi::parallel::Max(controller, hi[c]);
+  }
   const double diagonal =
     std::sqrt(std::pow(hi[0] - lo[0], 2) + std::pow(hi[1] - lo[1], 2) + std::pow(hi[2] - lo[2], 2));
 
@@ -339,6 +455,77 @@ int vtkPGISphereLightSampler::RequestData(
   const int m = static_cast<int>(directions.size() / 3);
   const int ak = this->AlbedoOrder, a2 = ak * ak;
   const proxygi::sh::SphereQuadrature rule(this->AlbedoResolution);
+  // Every sphere's rays, geodesic then albedo directions: this piece's candidates.
+  const std::size_t rays = static_cast<std::size_t>(m) + rule.Size();
+  const std::size_t record = rays * CandidateSize;
+  std::vector<double> candidates(static_cast<std::size_t>(ns) * record);
+  if (device)
+  {
+    vtkSMPTools::For(0, ns,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType i = first; i < last; ++i)
+        {
+          auto object = objects.find(sphereObject[i]);
+          Sampler s{ &mesh, object != objects.end() ? &object->second : nullptr, &spheres, {},
+            1e-6 * diagonal };
+          for (vtkIdType k = 0; k < ns; ++k)
+          {
+            if (sphereObject[k] == sphereObject[i] && sphereLevel[k] == sphereLevel[i])
+            {
+              s.Peers.push_back(static_cast<int>(k));
+            }
+          }
+          double* mine = &candidates[static_cast<std::size_t>(i) * record];
+          for (std::size_t j = 0; j < rays; ++j)
+          {
+            const double albedoRay[3] = { j < std::size_t(m) ? 0.0 : rule.X[j - m],
+              j < std::size_t(m) ? 0.0 : rule.Y[j - m], j < std::size_t(m) ? 0.0 : rule.Z[j - m] };
+            const double* w = j < std::size_t(m) ? &directions[3 * j] : albedoRay;
+            const Candidate c = s.Find(static_cast<int>(i), w);
+            std::copy(c.V, c.V + CandidateSize, mine + j * CandidateSize);
+          }
+        }
+      });
+  }
+  for (auto& entry : objects)
+  {
+    rtcReleaseScene(entry.second.Scene);
+  }
+  if (device)
+  {
+    rtcReleaseDevice(device);
+  }
+  if (!proxygi::parallel::AllOk(controller, error.empty(), error, agreed, &traffic))
+  {
+    vtkErrorMacro(<< agreed);
+    return 0;
+  }
+  // A sphere whose object has no triangles anywhere samples nothing.
+  std::vector<int> present(static_cast<std::size_t>(ns)), presentAnywhere(present.size());
+  for (vtkIdType i = 0; i < ns; ++i)
+  {
+    present[i] = objects.count(sphereObject[i]) ? 1 : 0;
+  }
+  if (controller && ns > 0)
+  {
+    controller->AllReduce(present.data(), presentAnywhere.data(), ns, vtkCommunicator::MAX_OP);
+    present.swap(presentAnywhere);
+  }
+  // Every rank's candidates, combined per ray as the serial rules would.
+  const int ranks = proxygi::parallel::Ranks(controller);
+  std::vector<double> all;
+  if (controller)
+  {
+    all.resize(candidates.size() * static_cast<std::size_t>(ranks));
+    controller->AllGather(candidates.data(), all.data(), static_cast<vtkIdType>(candidates.size()));
+    traffic.BytesSent += sizeof(double) * candidates.size() * (ranks - 1);
+    traffic.BytesReceived += sizeof(double) * candidates.size() * (ranks - 1);
+  }
+  const std::vector<double>& gathered = controller ? all : candidates;
+  this->CommunicationBytes = static_cast<double>(traffic.BytesReceived);
+  const std::size_t perRank = candidates.size();
+
   vtkNew<vtkFloatArray> offsets, normals, albedoSH;
   vtkNew<vtkIntArray> counts;
   offsets->SetName("SampleOffset");
@@ -366,54 +553,47 @@ int vtkPGISphereLightSampler::RequestData(
         std::fill(nor.begin(), nor.end(), 0.0f);
         std::fill(sh.begin(), sh.end(), 0.0f);
         int count = 0;
-        auto object = objects.find(sphereObject[i]);
-        if (object != objects.end())
+        const double* base = &gathered[static_cast<std::size_t>(i) * record];
+        auto sampleOf = [&](std::size_t j)
+        { return Combine(base + j * CandidateSize, ranks, perRank); };
+        const double r = spheres[4 * i + 3];
+        for (int j = 0; j < m; ++j)
         {
-          Sampler s{ &mesh, &object->second, &spheres, {}, 1e-6 * diagonal };
-          for (vtkIdType k = 0; k < ns; ++k)
+          const Sample sample = sampleOf(static_cast<std::size_t>(j));
+          ++rules[sample.Rule == 0 ? 3 : sample.Rule - 1];
+          if (sample.Rule == 1 || sample.Rule == 3)
           {
-            if (sphereObject[k] == sphereObject[i] && sphereLevel[k] == sphereLevel[i])
+            ++count;
+            for (int c = 0; c < 3; ++c)
             {
-              s.Peers.push_back(static_cast<int>(k));
+              off[3 * j + c] = static_cast<float>((sample.P[c] - spheres[4 * i + c]) / r);
+              nor[3 * j + c] = static_cast<float>(sample.N[c]);
             }
           }
-          const double r = spheres[4 * i + 3];
-          for (int j = 0; j < m; ++j)
+        }
+        // Albedo: the same rules on the quadrature's directions; misses take the mean.
+        found.assign(rule.Size() * 4, -1.0);
+        double mean[3] = { 0, 0, 0 }, weight = 0.0;
+        for (std::size_t q = 0; q < rule.Size(); ++q)
+        {
+          const Sample sample = sampleOf(static_cast<std::size_t>(m) + q);
+          if (sample.Rule == 1 || sample.Rule == 3)
           {
-            const Sample sample = s.Find(static_cast<int>(i), &directions[3 * j]);
-            ++rules[sample.Rule == 0 ? 3 : sample.Rule - 1];
-            if (sample.Rule == 1 || sample.Rule == 3)
+            for (int c = 0; c < 3; ++c)
             {
-              ++count;
-              for (int c = 0; c < 3; ++c)
-              {
-                off[3 * j + c] = static_cast<float>((sample.P[c] - spheres[4 * i + c]) / r);
-                nor[3 * j + c] = static_cast<float>(sample.N[c]);
-              }
+              found[4 * q + c] = sample.Albedo[c];
+              mean[c] += rule.W[q] * sample.Albedo[c];
             }
+            found[4 * q + 3] = 1.0;
+            weight += rule.W[q];
           }
-          // Albedo: the same rules on the quadrature's directions; misses take the mean.
-          found.assign(rule.Size() * 4, -1.0);
-          double mean[3] = { 0, 0, 0 }, weight = 0.0;
-          for (std::size_t q = 0; q < rule.Size(); ++q)
-          {
-            const double w[3] = { rule.X[q], rule.Y[q], rule.Z[q] };
-            const Sample sample = s.Find(static_cast<int>(i), w);
-            if (sample.Rule == 1 || sample.Rule == 3)
-            {
-              for (int c = 0; c < 3; ++c)
-              {
-                found[4 * q + c] = sample.Albedo[c];
-                mean[c] += rule.W[q] * sample.Albedo[c];
-              }
-              found[4 * q + 3] = 1.0;
-              weight += rule.W[q];
-            }
-          }
-          for (int c = 0; c < 3; ++c)
-          {
-            mean[c] = weight > 0.0 ? mean[c] / weight : this->DefaultAlbedo[c];
-          }
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          mean[c] = weight > 0.0 ? mean[c] / weight : this->DefaultAlbedo[c];
+        }
+        if (present[i])
+        {
           for (std::size_t q = 0; q < rule.Size(); ++q)
           {
             proxygi::sh::EvaluateBasis(ak, rule.X[q], rule.Y[q], rule.Z[q], y);
@@ -433,11 +613,6 @@ int vtkPGISphereLightSampler::RequestData(
         counts->SetValue(i, count);
       }
     });
-  for (auto& entry : objects)
-  {
-    rtcReleaseScene(entry.second.Scene);
-  }
-  rtcReleaseDevice(device);
 
   output->ShallowCopy(proxies);
   output->GetPointData()->AddArray(offsets);

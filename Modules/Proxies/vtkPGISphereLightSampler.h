@@ -42,13 +42,26 @@
  * pass | | AlbedoOrder | 4 | SH order of AlbedoSH | | AlbedoResolution | 16 | 2 r^2 albedo rays per
  * sphere | | DefaultAlbedo | 0.8 0.8 0.8 | per-object colour without an albedo array |
  *
- * Errors: empty or NaN/Inf mesh or proxies, proxies without Radius.
+ * Distributed (Controller, default the global controller, with more than
+ * one process): each rank holds a piece of the mesh and the same global
+ * proxies (Sphere Proxies' output). Each rank casts every sphere's rays
+ * against its own piece and keeps, per ray, what the rules need: the
+ * farthest in-segment forward hit, whether any forward hit exists, and
+ * (without one) the nearest in-segment backward hit. These are all-gathered
+ * (88 bytes per ray per rank) and combined as the rules would be on the
+ * whole mesh, so every rank outputs the serial result; a rank with an empty
+ * piece takes part. GetCommunicationBytes: what this rank received.
+ *
+ * Errors: empty or NaN/Inf mesh or proxies, proxies without Radius; under
+ * MPI, ranks whose proxy sets differ in size (an error on every rank).
  */
 #ifndef vtkPGISphereLightSampler_h
 #define vtkPGISphereLightSampler_h
 
 #include "ProxyGIProxiesModule.h"
 #include "vtkPolyDataAlgorithm.h"
+
+class vtkMultiProcessController;
 
 class PROXYGIPROXIES_EXPORT vtkPGISphereLightSampler : public vtkPolyDataAlgorithm
 {
@@ -71,6 +84,12 @@ public:
   vtkSetStringMacro(AlbedoArrayName);
   vtkGetStringMacro(AlbedoArrayName);
 
+  /// The ranks the mesh is spread over (null: this process alone).
+  virtual void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  /// Bytes this rank received in the last update (0 serially).
+  vtkGetMacro(CommunicationBytes, double);
+
 protected:
   vtkPGISphereLightSampler();
   ~vtkPGISphereLightSampler() override;
@@ -83,6 +102,8 @@ protected:
   int AlbedoResolution = 16;
   double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
   char* AlbedoArrayName = nullptr;
+  vtkMultiProcessController* Controller = nullptr;
+  double CommunicationBytes = 0.0;
 
 private:
   vtkPGISphereLightSampler(const vtkPGISphereLightSampler&) = delete;

@@ -1,6 +1,7 @@
 #include "vtkPGISphereSetApproximation.h"
 
 #include "pgiMeshQueries.h"
+#include "pgiParallel.h"
 #include "pgiProxyMesh.h"
 #include "pgiSphereSetBuilder.h"
 
@@ -13,6 +14,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSet.h"
@@ -22,6 +24,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -33,16 +36,31 @@ vtkStandardNewMacro(vtkPGISphereSetApproximation);
 struct vtkPGISphereSetApproximation::Internal
 {
   std::vector<double> Ratio, RatioSum, Time;
+  proxygi::parallel::Traffic Gather;
 };
+
+vtkCxxSetObjectMacro(vtkPGISphereSetApproximation, Controller, vtkMultiProcessController);
 
 vtkPGISphereSetApproximation::vtkPGISphereSetApproximation()
   : Impl(new Internal)
 {
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
 vtkPGISphereSetApproximation::~vtkPGISphereSetApproximation()
 {
+  this->SetController(nullptr);
   delete this->Impl;
+}
+
+double vtkPGISphereSetApproximation::GetGatherTime() const
+{
+  return this->Impl->Gather.Seconds;
+}
+
+double vtkPGISphereSetApproximation::GetGatheredBytes() const
+{
+  return static_cast<double>(this->Impl->Gather.BytesReceived);
 }
 
 const char* vtkPGISphereSetApproximation::GetMethodName(int method)
@@ -73,6 +91,9 @@ void vtkPGISphereSetApproximation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumTeleportFailures: " << this->MaximumTeleportFailures << "\n";
   os << indent << "ComputeOutsideVolume: " << this->ComputeOutsideVolume << "\n";
   os << indent << "MetricResolution: " << this->MetricResolution << "\n";
+  os << indent << "CapDistributedPieces: " << this->CapDistributedPieces << "\n";
+  os << indent << "Controller: " << this->Controller << " ("
+     << proxygi::parallel::Ranks(this->Controller) << " ranks)\n";
 }
 
 int vtkPGISphereSetApproximation::FillInputPortInformation(int, vtkInformation* info)
@@ -151,6 +172,64 @@ bool AddPolyData(vtkPolyData* pd, const std::string& name, std::vector<NamedMesh
   objects.push_back(std::move(object));
   return true;
 }
+
+// Under MPI an object's pieces lie on several ranks: object o (by its place
+// in each rank's list) gets `total` spheres over all ranks, shared by
+// triangle count (largest remainder, ties to the lower rank), at least one
+// per non-empty piece so that every piece stays bounded.
+std::vector<int> ShareSpheres(
+  vtkMultiProcessController* c, const std::vector<NamedMesh>& objects, int total)
+{
+  const long long most = proxygi::parallel::Max(c, static_cast<double>(objects.size()));
+  const int rank = proxygi::parallel::Rank(c);
+  std::vector<int> counts(objects.size(), total);
+  for (long long o = 0; o < most; ++o)
+  {
+    const long long mine = o < static_cast<long long>(objects.size())
+      ? objects[static_cast<std::size_t>(o)].Mesh.NumberOfTriangles()
+      : 0;
+    const std::vector<long long> triangles = proxygi::parallel::AllGatherCounts(c, mine);
+    long long sum = 0;
+    for (long long t : triangles)
+    {
+      sum += t;
+    }
+    if (mine == 0 || sum == 0)
+    {
+      continue;
+    }
+    const std::size_t ranks = triangles.size();
+    std::vector<long long> share(ranks, 0);
+    std::vector<double> remainder(ranks, -1.0);
+    long long given = 0;
+    for (std::size_t r = 0; r < ranks; ++r)
+    {
+      if (triangles[r] == 0)
+      {
+        continue;
+      }
+      const double exact =
+        static_cast<double>(total) * static_cast<double>(triangles[r]) / static_cast<double>(sum);
+      share[r] = std::max(1LL, static_cast<long long>(std::floor(exact)));
+      remainder[r] = exact - std::floor(exact);
+      given += share[r];
+    }
+    while (given < total)
+    {
+      const auto r = static_cast<std::size_t>(
+        std::max_element(remainder.begin(), remainder.end()) - remainder.begin());
+      if (remainder[r] < 0.0)
+      {
+        break;
+      }
+      ++share[r];
+      remainder[r] = -1.0;
+      ++given;
+    }
+    counts[static_cast<std::size_t>(o)] = static_cast<int>(share[static_cast<std::size_t>(rank)]);
+  }
+  return counts;
+}
 } // namespace
 
 int vtkPGISphereSetApproximation::RequestData(
@@ -161,7 +240,9 @@ int vtkPGISphereSetApproximation::RequestData(
   this->Impl->Ratio.clear();
   this->Impl->RatioSum.clear();
   this->Impl->Time.clear();
-  if (!input)
+  this->Impl->Gather = proxygi::parallel::Traffic();
+  vtkMultiProcessController* controller = proxygi::parallel::Active(this->Controller);
+  if (!input && !controller)
   {
     vtkErrorMacro("No input.");
     return 0;
@@ -172,9 +253,15 @@ int vtkPGISphereSetApproximation::RequestData(
   std::vector<std::string> warnings;
   std::string error;
   bool ok = true;
-  if (auto* pd = vtkPolyData::SafeDownCast(input))
+  if (!input)
   {
-    ok = AddPolyData(pd, "the input mesh", objects, error, warnings, false);
+    error = "no input";
+    ok = false;
+  }
+  else if (auto* pd = vtkPolyData::SafeDownCast(input))
+  {
+    // Under MPI a rank's piece may be empty: it bounds nothing.
+    ok = AddPolyData(pd, "the input mesh", objects, error, warnings, controller != nullptr);
   }
   else if (auto* pdc = vtkPartitionedDataSetCollection::SafeDownCast(input))
   {
@@ -255,14 +342,17 @@ int vtkPGISphereSetApproximation::RequestData(
     error = std::string("unsupported input type ") + input->GetClassName();
     ok = false;
   }
-  if (ok && objects.empty())
+  if (ok && objects.empty() && !controller)
   {
     error = "the input holds no mesh";
     ok = false;
   }
-  if (!ok)
+  std::string agreed;
+  if (!proxygi::parallel::AllOk(
+        controller, ok, "Cannot build sphere proxies: " + error, agreed, &this->Impl->Gather))
   {
-    vtkErrorMacro("Cannot build sphere proxies: " << error << ".");
+    vtkErrorMacro(<< agreed << ".");
+    output->Initialize();
     return 0;
   }
   if (this->SplitConnectedComponents)
@@ -281,6 +371,18 @@ int vtkPGISphereSetApproximation::RequestData(
       }
     }
     objects.swap(split);
+  }
+  if (controller && this->CapDistributedPieces)
+  {
+    // A piece of a closed object is open along the partition's cut: capped,
+    // its inside (and so its interior samples) is defined again.
+    for (NamedMesh& object : objects)
+    {
+      if (object.Mesh.BoundaryEdges > 0)
+      {
+        proxygi::CapBoundaryLoops(object.Mesh);
+      }
+    }
   }
   for (const std::string& w : warnings)
   {
@@ -305,7 +407,13 @@ int vtkPGISphereSetApproximation::RequestData(
   sphereCount->SetName("SphereCount");
 
   const int n = static_cast<int>(objects.size());
-  for (int o = 0; o < n; ++o)
+  const std::vector<int> shares = controller
+    ? ShareSpheres(controller, objects, this->NumberOfSpheres)
+    : std::vector<int>(objects.size(), this->NumberOfSpheres);
+  // Failures inside the loop stop this rank's build; under MPI the ranks
+  // agree on them before the gather.
+  bool aborted = false;
+  for (int o = 0; o < n && ok; ++o)
   {
     const proxygi::ProxyMesh& mesh = objects[o].Mesh;
     const std::string& name = objects[o].Name;
@@ -326,9 +434,9 @@ int vtkPGISphereSetApproximation::RequestData(
     proxygi::MeshQueries queries(mesh);
     if (!queries.Ok())
     {
-      vtkErrorMacro("Cannot build sphere proxies of " << name << ": " << queries.Error() << ".");
-      output->Initialize();
-      return 0;
+      error = "Cannot build sphere proxies of " + name + ": " + queries.Error();
+      ok = false;
+      break;
     }
     proxygi::SphereSetOptions options;
     options.Method = static_cast<proxygi::SphereMethod>(this->Method);
@@ -352,7 +460,7 @@ int vtkPGISphereSetApproximation::RequestData(
                       << " rays cross it an odd number of times): only its surface is bounded "
                          "and E is undefined.");
     }
-    int count = this->NumberOfSpheres;
+    int count = shares[o];
     const int most = std::min(builder.NumberOfElements(), mesh.NumberOfPoints());
     if (count > most)
     {
@@ -376,13 +484,10 @@ int vtkPGISphereSetApproximation::RequestData(
       const auto t0 = std::chrono::steady_clock::now();
       if (!builder.Run(count, result))
       {
-        output->Initialize();
-        if (result.Aborted)
-        {
-          return 1;
-        }
-        vtkErrorMacro("Building sphere proxies of " << name << " failed.");
-        return 0;
+        aborted = result.Aborted;
+        error = aborted ? "aborted" : "Building sphere proxies of " + name + " failed";
+        ok = false;
+        break;
       }
       buildTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (this->ComputeOutsideVolume || target)
@@ -401,6 +506,10 @@ int vtkPGISphereSetApproximation::RequestData(
         break;
       }
       count = std::min(maxCount, std::max(count + 1, static_cast<int>(std::ceil(1.5 * count))));
+    }
+    if (!ok)
+    {
+      break;
     }
     buildTime += std::chrono::duration<double>(t0Setup).count();
     this->Impl->Time.push_back(buildTime);
@@ -424,6 +533,16 @@ int vtkPGISphereSetApproximation::RequestData(
           : nan);
     }
   }
+  if (!proxygi::parallel::AllOk(controller, ok, error, agreed, &this->Impl->Gather))
+  {
+    output->Initialize();
+    if (aborted && !controller)
+    {
+      return 1;
+    }
+    vtkErrorMacro(<< agreed << ".");
+    return 0;
+  }
   output->SetPoints(centers);
   vtkNew<vtkCellArray> verts;
   for (vtkIdType i = 0; i < centers->GetNumberOfPoints(); ++i)
@@ -444,6 +563,20 @@ int vtkPGISphereSetApproximation::RequestData(
   output->GetFieldData()->AddArray(ratioSum);
   output->GetFieldData()->AddArray(meshVolume);
   output->GetFieldData()->AddArray(sphereCount);
+  if (controller)
+  {
+    // Every rank shades against every rank's spheres.
+    std::string gatherError;
+    vtkSmartPointer<vtkPolyData> global =
+      proxygi::parallel::GatherProxies(controller, output, gatherError, &this->Impl->Gather);
+    if (!global)
+    {
+      vtkErrorMacro(<< gatherError << ".");
+      output->Initialize();
+      return 0;
+    }
+    output->ShallowCopy(global);
+  }
   this->UpdateProgress(1.0);
   return 1;
 }

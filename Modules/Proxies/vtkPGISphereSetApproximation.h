@@ -62,12 +62,32 @@
  *
  * Progress is reported per iteration; AbortExecute stops the build and
  * leaves the output empty.
+ *
+ * Distributed (Controller, default the global controller, with more than
+ * one process): each rank builds spheres of its own piece, cells marked as
+ * ghosts (vtkGhostType DUPLICATECELL) left out so that no occluder counts
+ * twice; an object's NumberOfSpheres is shared between the ranks holding
+ * pieces of it by their triangle counts (at least one sphere per non-empty
+ * piece); a rank with an empty piece builds none. A piece is open along
+ * the cut: with CapDistributedPieces (default on) each hole is closed by a
+ * fan of triangles to its centroid before the build, so that the piece
+ * encloses its share of the volume and gets interior samples (uncapped,
+ * a cut bunny's pieces are bounded on their surface only, and their spheres
+ * shadow too little). The spheres are then
+ * all-gathered in rank order, so every rank outputs the same global set
+ * (marked by the field array ProxyGIGlobalProxies) and the GI filters
+ * downstream shade against all of it. The field data (E, volumes) stays the
+ * rank's own piece's. A failure on one rank (bad input) fails every rank
+ * with the rank's reason, never a hang. Set the controller to null for
+ * per-rank sets.
  */
 #ifndef vtkPGISphereSetApproximation_h
 #define vtkPGISphereSetApproximation_h
 
 #include "ProxyGIProxiesModule.h"
 #include "vtkPolyDataAlgorithm.h"
+
+class vtkMultiProcessController;
 
 class PROXYGIPROXIES_EXPORT vtkPGISphereSetApproximation : public vtkPolyDataAlgorithm
 {
@@ -129,6 +149,17 @@ public:
   double GetBuildTime(int object) const;
   double GetTotalBuildTime() const;
 
+  /// The ranks the spheres are built and gathered over (null: this process alone).
+  virtual void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  /// Under MPI, close each piece's holes before the build (default on).
+  vtkSetMacro(CapDistributedPieces, bool);
+  vtkGetMacro(CapDistributedPieces, bool);
+  vtkBooleanMacro(CapDistributedPieces, bool);
+  /// Seconds and bytes received in the last update's collectives (0 serially).
+  double GetGatherTime() const;
+  double GetGatheredBytes() const;
+
 protected:
   vtkPGISphereSetApproximation();
   ~vtkPGISphereSetApproximation() override;
@@ -148,6 +179,8 @@ protected:
   int MaximumTeleportFailures = 8;
   bool ComputeOutsideVolume = true;
   int MetricResolution = 256;
+  vtkMultiProcessController* Controller = nullptr;
+  bool CapDistributedPieces = true;
 
 private:
   vtkPGISphereSetApproximation(const vtkPGISphereSetApproximation&) = delete;

@@ -2,6 +2,7 @@
 
 #include "pgiEnvironmentMap.h"
 #include "pgiMaterial.h"
+#include "pgiParallel.h"
 #include "pgiReferenceScene.h"
 #include "pgiReferenceTracer.h"
 #include "vtkPGILighting.h"
@@ -12,6 +13,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -21,19 +23,24 @@
 #include "vtkSmartPointer.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 vtkStandardNewMacro(vtkPGIReferenceIllumination);
 vtkCxxSetObjectMacro(vtkPGIReferenceIllumination, Lighting, vtkPGILighting);
+vtkCxxSetObjectMacro(vtkPGIReferenceIllumination, Controller, vtkMultiProcessController);
 
 vtkPGIReferenceIllumination::vtkPGIReferenceIllumination()
 {
   this->SetNumberOfInputPorts(3);
   this->SetAlbedoArrayName("Albedo");
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
 vtkPGIReferenceIllumination::~vtkPGIReferenceIllumination()
 {
   this->SetLighting(nullptr);
+  this->SetController(nullptr);
   this->SetAlbedoArrayName(nullptr);
 }
 
@@ -59,6 +66,10 @@ void vtkPGIReferenceIllumination::PrintSelf(ostream& os, vtkIndent indent)
      << " " << this->DefaultAlbedo[2] << "\n";
   os << indent << "AlbedoArrayName: " << (this->AlbedoArrayName ? this->AlbedoArrayName : "(none)")
      << "\n";
+  os << indent << "PositionSeeds: " << this->PositionSeeds << "\n";
+  os << indent << "MaximumGatheredTriangles: " << this->MaximumGatheredTriangles << "\n";
+  os << indent << "Controller: " << this->Controller << " ("
+     << proxygi::parallel::Ranks(this->Controller) << " ranks)\n";
 }
 
 int vtkPGIReferenceIllumination::FillInputPortInformation(int port, vtkInformation* info)
@@ -91,6 +102,49 @@ bool FinitePoints(vtkPolyData* mesh)
   }
   return true;
 }
+
+// A receiver's seed from its coordinates' bits (splitmix64 of each).
+std::uint64_t PositionSeed(const double x[3])
+{
+  std::uint64_t h = 0x9E3779B97F4A7C15ull;
+  for (int k = 0; k < 3; ++k)
+  {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x[k], sizeof bits);
+    h ^= bits + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+    h ^= h >> 30;
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 27;
+    h *= 0x94D049BB133111EBull;
+    h ^= h >> 31;
+  }
+  return h;
+}
+
+// What of a piece the scene needs: triangles and the albedo, no ghost cells.
+vtkSmartPointer<vtkPolyData> SceneGeometry(vtkPolyData* piece, const char* albedoArray)
+{
+  auto geometry = vtkSmartPointer<vtkPolyData>::New();
+  if (!piece || piece->GetNumberOfPoints() == 0)
+  {
+    return geometry;
+  }
+  auto owned = vtkSmartPointer<vtkPolyData>::New();
+  owned->ShallowCopy(piece);
+  if (piece->GetCellGhostArray())
+  {
+    owned->DeepCopy(piece);
+    owned->RemoveGhostCells();
+  }
+  geometry->SetPoints(owned->GetPoints());
+  geometry->SetPolys(owned->GetPolys());
+  geometry->SetStrips(owned->GetStrips());
+  if (albedoArray && owned->GetPointData()->GetArray(albedoArray))
+  {
+    geometry->GetPointData()->AddArray(owned->GetPointData()->GetArray(albedoArray));
+  }
+  return geometry;
+}
 } // namespace
 
 int vtkPGIReferenceIllumination::RequestData(
@@ -98,29 +152,39 @@ int vtkPGIReferenceIllumination::RequestData(
 {
   vtkPolyData* receivers = vtkPolyData::GetData(in[0]);
   vtkPolyData* output = vtkPolyData::GetData(out);
-  if (!receivers || receivers->GetNumberOfPoints() == 0)
+  this->CommunicationBytes = 0.0;
+  // Under MPI every rank reaches every collective, whatever its piece.
+  vtkMultiProcessController* controller = proxygi::parallel::Active(this->Controller);
+  const bool emptyPiece = controller && (!receivers || receivers->GetNumberOfPoints() == 0);
+  std::string localError, agreed;
+  if (!emptyPiece && (!receivers || receivers->GetNumberOfPoints() == 0))
   {
-    vtkErrorMacro("No receivers: input 0 is empty.");
-    return 0;
+    localError = "No receivers: input 0 is empty.";
   }
-  if (!FinitePoints(receivers))
+  else if (!emptyPiece && !FinitePoints(receivers))
   {
-    vtkErrorMacro("The receivers hold NaN or Inf points.");
-    return 0;
+    localError = "The receivers hold NaN or Inf points.";
+  }
+  for (int c = 0; localError.empty() && c < this->GetNumberOfInputConnections(1); ++c)
+  {
+    vtkPolyData* object = vtkPolyData::GetData(in[1], c);
+    if (object && !FinitePoints(object))
+    {
+      localError = "Scene object " + std::to_string(c) + " holds NaN or Inf points.";
+    }
   }
   vtkNew<vtkPGILighting> defaultLighting;
   vtkPGILighting* lighting = this->Lighting ? this->Lighting : defaultLighting.Get();
   const proxygi::EnvironmentMap* environment = nullptr;
   std::string error;
-  if (!lighting->GetEnvironment(environment, error))
+  if (localError.empty() && !lighting->GetEnvironment(environment, error))
   {
-    vtkErrorMacro("Bad environment: " << error);
-    return 0;
+    localError = "Bad environment: " + error;
   }
 
   // Normals: the input's, or computed (no splitting, so receivers stay 1:1).
   vtkSmartPointer<vtkPolyData> withNormals = receivers;
-  if (!receivers->GetPointData()->GetNormals())
+  if (localError.empty() && !emptyPiece && !receivers->GetPointData()->GetNormals())
   {
     vtkNew<vtkPolyDataNormals> normals;
     normals->SetInputData(receivers);
@@ -131,46 +195,97 @@ int vtkPGIReferenceIllumination::RequestData(
     if (withNormals->GetNumberOfPoints() != receivers->GetNumberOfPoints() ||
       !withNormals->GetPointData()->GetNormals())
     {
-      vtkErrorMacro("Could not compute receiver normals (no polygons?); give point normals.");
-      return 0;
+      localError = "Could not compute receiver normals (no polygons?); give point normals.";
     }
   }
-
-  proxygi::ReferenceTracer tracer;
-  tracer.SetEnvironment(environment);
-  bool ok =
-    proxygi::AddPolyData(tracer, receivers, this->DefaultAlbedo, this->AlbedoArrayName, error);
   vtkPolyData* proxies =
     this->GetNumberOfInputConnections(2) ? vtkPolyData::GetData(in[2]) : nullptr;
-  if (ok && this->UseProxies)
+  if (localError.empty() && this->UseProxies && !proxies)
   {
-    if (!proxies)
+    localError = "UseProxies is on but input 2 (proxies) is not connected.";
+  }
+  // The scene's size over all ranks, before anything large moves.
+  double triangles = 0.0;
+  if (controller && localError.empty())
+  {
+    triangles += receivers ? static_cast<double>(receivers->GetNumberOfPolys()) : 0.0;
+    for (int c = 0; !this->UseProxies && c < this->GetNumberOfInputConnections(1); ++c)
     {
-      vtkErrorMacro("UseProxies is on but input 2 (proxies) is not connected.");
-      return 0;
+      vtkPolyData* object = vtkPolyData::GetData(in[1], c);
+      triangles += object ? static_cast<double>(object->GetNumberOfPolys()) : 0.0;
     }
-    ok =
-      proxygi::AddProxySpheres(tracer, proxies, this->DefaultAlbedo, this->AlbedoArrayName, error);
+  }
+  triangles = proxygi::parallel::Sum(controller, triangles);
+  if (controller && localError.empty() && triangles > this->MaximumGatheredTriangles)
+  {
+    localError = "the scene has " + std::to_string(static_cast<long long>(triangles)) +
+      " triangles over all ranks, more than MaximumGatheredTriangles (" +
+      std::to_string(static_cast<long long>(this->MaximumGatheredTriangles)) +
+      "): each rank would hold all of them; trace a smaller scene or raise the limit";
+  }
+  if (!proxygi::parallel::AllOk(controller, localError.empty(), localError, agreed))
+  {
+    vtkErrorMacro(<< agreed);
+    return 0;
+  }
+
+  // Every rank traces against the whole scene.
+  proxygi::parallel::Traffic traffic;
+  vtkSmartPointer<vtkPolyData> sceneReceivers = receivers;
+  std::vector<vtkSmartPointer<vtkPolyData>> sceneObjects;
+  vtkSmartPointer<vtkPolyData> sceneProxies = proxies;
+  if (controller)
+  {
+    sceneReceivers = proxygi::parallel::AllGatherPolyData(
+      controller, SceneGeometry(receivers, this->AlbedoArrayName), &traffic);
+    if (this->UseProxies)
+    {
+      sceneProxies = proxygi::parallel::GatherProxies(controller, proxies, error, &traffic);
+    }
+    else
+    {
+      for (int c = 0; c < this->GetNumberOfInputConnections(1); ++c)
+      {
+        sceneObjects.push_back(proxygi::parallel::AllGatherPolyData(controller,
+          SceneGeometry(vtkPolyData::GetData(in[1], c), this->AlbedoArrayName), &traffic));
+      }
+    }
+    this->CommunicationBytes = static_cast<double>(traffic.BytesReceived);
   }
   else
   {
-    for (int c = 0; ok && c < this->GetNumberOfInputConnections(1); ++c)
+    for (int c = 0; c < this->GetNumberOfInputConnections(1); ++c)
     {
-      vtkPolyData* object = vtkPolyData::GetData(in[1], c);
-      if (object && !FinitePoints(object))
-      {
-        vtkErrorMacro("Scene object " << c << " holds NaN or Inf points.");
-        return 0;
-      }
-      ok = proxygi::AddPolyData(tracer, object, this->DefaultAlbedo, this->AlbedoArrayName, error);
+      sceneObjects.emplace_back(vtkPolyData::GetData(in[1], c));
+    }
+  }
+  proxygi::ReferenceTracer tracer;
+  tracer.SetEnvironment(environment);
+  bool ok =
+    proxygi::AddPolyData(tracer, sceneReceivers, this->DefaultAlbedo, this->AlbedoArrayName, error);
+  if (ok && this->UseProxies)
+  {
+    ok = sceneProxies &&
+      proxygi::AddProxySpheres(
+        tracer, sceneProxies, this->DefaultAlbedo, this->AlbedoArrayName, error);
+  }
+  else
+  {
+    for (std::size_t c = 0; ok && c < sceneObjects.size(); ++c)
+    {
+      ok = proxygi::AddPolyData(
+        tracer, sceneObjects[c], this->DefaultAlbedo, this->AlbedoArrayName, error);
     }
   }
   proxygi::AddLocalLights(tracer, lighting);
-  if (!ok || !tracer.Commit(error))
+  ok = ok && tracer.Commit(error);
+  if (!proxygi::parallel::AllOk(
+        controller, ok, "Cannot build the scene: " + error, agreed, &traffic))
   {
-    vtkErrorMacro("Cannot build the scene: " << error);
+    vtkErrorMacro(<< agreed);
     return 0;
   }
+  const bool positionSeeds = this->PositionSeeds || controller;
 
   const vtkIdType n = receivers->GetNumberOfPoints();
   auto makeArray = [n](const char* name)
@@ -184,7 +299,12 @@ int vtkPGIReferenceIllumination::RequestData(
   auto direct = makeArray("DirectShadowed"), indirect = makeArray("IndirectOneBounce"),
        total = makeArray("Radiance"), totalErr = makeArray("RadianceStdErr"),
        directErr = makeArray("DirectStdErr"), indirectErr = makeArray("IndirectStdErr");
-  vtkDataArray* normals = withNormals->GetPointData()->GetNormals();
+  vtkSmartPointer<vtkDataArray> normals = withNormals->GetPointData()->GetNormals();
+  if (!normals)
+  {
+    normals = vtkSmartPointer<vtkFloatArray>::New();
+    normals->SetNumberOfComponents(3);
+  }
   proxygi::ReferenceTracer::Settings settings;
   settings.Samples = this->Samples;
   settings.MaxBounces = this->MaxBounces;
@@ -210,7 +330,8 @@ int vtkPGIReferenceIllumination::RequestData(
           }
           proxygi::AlbedoOf(receivers, this->AlbedoArrayName, i, this->DefaultAlbedo, albedo);
           proxygi::ReferenceTracer::Estimate e;
-          tracer.EstimateIrradiance(x, nrm, static_cast<std::uint64_t>(i), settings, e);
+          tracer.EstimateIrradiance(
+            x, nrm, positionSeeds ? PositionSeed(x) : static_cast<std::uint64_t>(i), settings, e);
           float d[3], id[3], t[3], te[3], de[3], ie[3];
           for (int k = 0; k < 3; ++k)
           {

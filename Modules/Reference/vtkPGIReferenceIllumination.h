@@ -30,6 +30,21 @@
  * | DefaultAlbedo | 0.8 0.8 0.8 | where no AlbedoArrayName array exists |
  * | AlbedoArrayName | "Albedo" | 3-component point array, floats in 0..1 or bytes |
  *
+ * Distributed (Controller, default the global controller, with more than
+ * one process): each rank traces its own receivers against the whole scene.
+ * The scene (every rank's receivers and scene objects, ghost cells left out,
+ * and the proxies) is all-gathered first, so each rank holds all of it:
+ * about 40 bytes per triangle travel to every rank and Embree's BVH takes
+ * roughly 100 more per triangle there. Above MaximumGatheredTriangles
+ * (default 20 million: some 3 GB per rank) the filter refuses, on every
+ * rank, rather than exhaust memory; tracing a larger scene needs rays sent
+ * between ranks, which this filter does not do. Under MPI the random
+ * sequence of a receiver is seeded by its position (PositionSeeds), not by
+ * its index in a piece, so the result of a point does not depend on the
+ * partition and equals a serial run with PositionSeeds on. A rank with an
+ * empty piece takes part; an error on one rank is an error on every rank.
+ * The field data (rays, errors) is the rank's own.
+ *
  * Errors: no receivers, NaN/Inf points, an empty scene, a bad environment.
  * Degenerate triangles are skipped (count in field data "SkippedTriangles").
  */
@@ -39,6 +54,7 @@
 #include "ProxyGIReferenceModule.h"
 #include "vtkPolyDataAlgorithm.h"
 
+class vtkMultiProcessController;
 class vtkPGILighting;
 
 class PROXYGIREFERENCE_EXPORT vtkPGIReferenceIllumination : public vtkPolyDataAlgorithm
@@ -64,6 +80,20 @@ public:
   vtkGetVector3Macro(DefaultAlbedo, double);
   vtkSetStringMacro(AlbedoArrayName);
   vtkGetStringMacro(AlbedoArrayName);
+  /// Seed each receiver's samples by its position instead of its index
+  /// (default off; always on under MPI).
+  vtkSetMacro(PositionSeeds, bool);
+  vtkGetMacro(PositionSeeds, bool);
+  vtkBooleanMacro(PositionSeeds, bool);
+
+  /// The ranks the receivers are spread over (null: this process alone).
+  virtual void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  /// Under MPI, the largest scene (triangles over all ranks) gathered.
+  vtkSetClampMacro(MaximumGatheredTriangles, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaximumGatheredTriangles, double);
+  /// Bytes this rank received in the last update's gather (0 serially).
+  vtkGetMacro(CommunicationBytes, double);
 
   /// Convenience: the scene objects and proxies ports.
   void AddSceneObjectConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(1, output); }
@@ -88,6 +118,10 @@ protected:
   bool UseProxies = false;
   double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
   char* AlbedoArrayName = nullptr;
+  bool PositionSeeds = false;
+  vtkMultiProcessController* Controller = nullptr;
+  double MaximumGatheredTriangles = 2e7;
+  double CommunicationBytes = 0.0;
 
 private:
   vtkPGIReferenceIllumination(const vtkPGIReferenceIllumination&) = delete;

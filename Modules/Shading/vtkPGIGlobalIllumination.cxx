@@ -4,6 +4,7 @@
 #include "pgiEnvironmentShading.h"
 #include "pgiIndirectLight.h"
 #include "pgiMaterial.h"
+#include "pgiParallel.h"
 #include "pgiSHLightTables.h"
 #include "pgiSHSphericalLight.h"
 #include "pgiSHZonal.h"
@@ -19,6 +20,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -109,6 +111,7 @@ void UnitNormal(vtkDataArray* normals, vtkIdType i, double n[3])
 }
 } // namespace
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Lighting, vtkPGILighting);
+vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Controller, vtkMultiProcessController);
 
 // Receiver clusters and their hierarchy cuts (one blocker list each).
 struct vtkPGIGlobalIllumination::Clusters
@@ -123,11 +126,13 @@ vtkPGIGlobalIllumination::vtkPGIGlobalIllumination()
   this->SetNumberOfInputPorts(2);
   this->Settings = vtkPGIGISettings::New();
   this->Bake->SetSettings(this->Effective);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
 vtkPGIGlobalIllumination::~vtkPGIGlobalIllumination()
 {
   this->SetLighting(nullptr);
+  this->SetController(nullptr);
   this->Settings->UnRegister(this);
 }
 
@@ -195,6 +200,8 @@ void vtkPGIGlobalIllumination::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlockerPlanes: " << this->Bake->GetNumberOfBlockerPlanes() << "\n";
   os << indent << "Bake builds: " << this->Bake->GetNumberOfBuilds() << "\n";
   os << indent << "ColorExposure: " << this->ColorExposure << "\n";
+  os << indent << "Controller: " << this->Controller << " ("
+     << proxygi::parallel::Ranks(this->Controller) << " ranks)\n";
 }
 
 int vtkPGIGlobalIllumination::FillInputPortInformation(int port, vtkInformation* info)
@@ -207,12 +214,11 @@ int vtkPGIGlobalIllumination::FillInputPortInformation(int port, vtkInformation*
   return 1;
 }
 
-bool vtkPGIGlobalIllumination::CheckReceivers(vtkPolyData* receivers)
+std::string vtkPGIGlobalIllumination::CheckReceivers(vtkPolyData* receivers)
 {
   if (!receivers || receivers->GetNumberOfPoints() == 0)
   {
-    vtkErrorMacro("No receivers: input 0 is empty.");
-    return false;
+    return "No receivers: input 0 is empty.";
   }
   for (vtkIdType i = 0; i < receivers->GetNumberOfPoints(); ++i)
   {
@@ -220,14 +226,13 @@ bool vtkPGIGlobalIllumination::CheckReceivers(vtkPolyData* receivers)
     receivers->GetPoint(i, p);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
     {
-      vtkErrorMacro("Receiver " << i << " has a NaN or Inf coordinate.");
-      return false;
+      return "Receiver " + std::to_string(i) + " has a NaN or Inf coordinate.";
     }
   }
-  return true;
+  return std::string();
 }
 
-bool vtkPGIGlobalIllumination::PrepareBake(vtkPolyData* proxies)
+std::string vtkPGIGlobalIllumination::PrepareBake(vtkPolyData* proxies)
 {
   std::vector<std::string> notes;
   this->Settings->Resolve(
@@ -241,20 +246,16 @@ bool vtkPGIGlobalIllumination::PrepareBake(vtkPolyData* proxies)
     {
       std::string m = proxyError;
       m[0] = static_cast<char>(std::toupper(m[0]));
-      vtkErrorMacro(<< m << " (the proxies, input 1).");
+      return m + " (the proxies, input 1).";
     }
-    else
-    {
-      vtkErrorMacro(<< this->Bake->GetError());
-    }
-    return false;
+    return this->Bake->GetError();
   }
   this->Plan = this->Bake->GetScene().Plan;
   if (this->Effective->GetHierarchyAngle() > 0.0 && !this->Bake->GetScene().UseHierarchy)
   {
     this->Plan.push_back("hierarchy: not used (the proxies have no Level/Parent arrays)");
   }
-  return true;
+  return std::string();
 }
 
 bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataArray* normals)
@@ -267,6 +268,10 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
     return true;
   }
   const vtkIdType n = receivers->GetNumberOfPoints();
+  if (n == 0)
+  {
+    return true;
+  }
   const int perCluster = this->Effective->GetReceiversPerCluster();
   const int clusters = static_cast<int>(std::max<vtkIdType>(1, (n + perCluster - 1) / perCluster));
   std::vector<double> points(3 * static_cast<std::size_t>(n));
@@ -531,7 +536,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
                 ? "per-object"
                 : "per-sphere")
          << " blocking, " << seconds << " s summed over threads ("
-         << 1e6 * seconds / static_cast<double>(n) << " us per receiver)";
+         << (n ? 1e6 * seconds / static_cast<double>(n) : 0.0) << " us per receiver)";
     this->Plan.push_back(line.str());
   }
   if (shadowedFailures > 0)
@@ -592,19 +597,73 @@ int vtkPGIGlobalIllumination::RequestData(
   vtkInformation*, vtkInformationVector** in, vtkInformationVector* out)
 {
   this->Plan.clear();
+  this->CommunicationTime = this->CommunicationBytes = 0.0;
   vtkPolyData* receivers = vtkPolyData::GetData(in[0]);
   vtkPolyData* output = vtkPolyData::GetData(out);
   vtkPolyData* proxies =
     this->GetNumberOfInputConnections(1) ? vtkPolyData::GetData(in[1]) : nullptr;
-  if (!this->CheckReceivers(receivers) || !this->PrepareBake(proxies))
+  // Under MPI every rank reaches every collective below, whatever its
+  // piece: a rank that fails says so in the agreement and all stop there.
+  vtkMultiProcessController* controller = proxygi::parallel::Active(this->Controller);
+  const bool emptyPiece = controller && (!receivers || receivers->GetNumberOfPoints() == 0);
+  std::string error = emptyPiece ? std::string() : this->CheckReceivers(receivers);
+  vtkSmartPointer<vtkDataArray> normals;
+  if (emptyPiece)
   {
+    normals = vtkSmartPointer<vtkFloatArray>::New();
+    normals->SetNumberOfComponents(3);
+  }
+  else if (error.empty())
+  {
+    normals = proxygi::ReceiverNormals(receivers);
+    if (!normals)
+    {
+      error = "Could not compute receiver normals (no polygons?); give point normals.";
+    }
+  }
+  proxygi::parallel::Traffic traffic;
+  std::string agreed;
+  if (!proxygi::parallel::AllOk(controller, error.empty(), error, agreed, &traffic))
+  {
+    vtkErrorMacro(<< agreed);
     return 0;
   }
-  vtkSmartPointer<vtkDataArray> normals = proxygi::ReceiverNormals(receivers);
-  if (!normals)
+  vtkSmartPointer<vtkPolyData> globalProxies = proxies;
+  const bool gathered = controller && !proxygi::parallel::IsGlobal(proxies);
+  if (controller)
   {
-    vtkErrorMacro("Could not compute receiver normals (no polygons?); give point normals.");
+    globalProxies = proxygi::parallel::GatherProxies(controller, proxies, error, &traffic);
+    if (!globalProxies)
+    {
+      vtkErrorMacro(<< "Proxies: " << error << ".");
+      return 0;
+    }
+  }
+  error = this->PrepareBake(globalProxies);
+  if (!proxygi::parallel::AllOk(controller, error.empty(), error, agreed, &traffic))
+  {
+    vtkErrorMacro(<< agreed);
     return 0;
+  }
+  this->CommunicationTime = traffic.Seconds;
+  this->CommunicationBytes = static_cast<double>(traffic.BytesReceived);
+  if (controller)
+  {
+    std::ostringstream line;
+    line << "distributed: rank " << controller->GetLocalProcessId() << " of "
+         << controller->GetNumberOfProcesses() << ", "
+         << (receivers ? receivers->GetNumberOfPoints() : 0) << " receivers in this piece; "
+         << (globalProxies ? globalProxies->GetNumberOfPoints() : 0) << " proxies, "
+         << (gathered ? "all-gathered here" : "global already (gathered upstream)") << "; "
+         << traffic.BytesReceived << " bytes received in " << 1e3 * traffic.Seconds << " ms";
+    this->Plan.push_back(line.str());
+    if (!emptyPiece && !receivers->GetPointData()->GetNormals() && !receivers->GetCellGhostArray())
+    {
+      this->Plan.push_back("normals: computed on this rank's piece without ghost cells, so "
+                           "points on a partition boundary may get other normals (and "
+                           "results) than on the neighbouring rank; give normals computed "
+                           "before the split, or a ghost layer");
+    }
   }
   if (!this->ReceiverClusters)
   {

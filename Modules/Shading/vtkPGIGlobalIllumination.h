@@ -47,6 +47,18 @@
  * cluster's cut of lights carries reflection ratios. It runs when some light
  * has a nonzero albedo and there is light to bounce.
  *
+ * Distributed (Controller, default the global controller, with more than
+ * one process): each rank shades its own piece of the receivers against the
+ * global proxies. Proxies that are not yet global (vtkPGISphereSetApproximation
+ * gathers its own) are all-gathered in rank order, so every rank bakes the
+ * same scene and a point shared by two pieces gets the same result on both
+ * (given the same normal: give point normals computed before the split, or
+ * a ghost layer; the Plan says when normals were computed per piece). A rank
+ * with an empty piece takes part and outputs an empty polydata with the
+ * arrays. An error on one rank (bad input) is an error on every rank, with
+ * that rank's reason: no rank waits forever. Per receiver the shading needs
+ * no communication; hierarchy cuts are per receiver cluster of the piece.
+ *
  * Errors: no receivers, NaN/Inf in receiver points or proxies, proxies
  * without a Radius array, a bad environment. A zero, NaN or Inf normal (as
  * vtkPolyDataNormals gives degenerate triangles) is not an error: that
@@ -66,6 +78,7 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkMultiProcessController;
 class vtkPGILighting;
 
 class PROXYGISHADING_EXPORT vtkPGIGlobalIllumination : public vtkPolyDataAlgorithm
@@ -102,6 +115,13 @@ public:
   vtkSetClampMacro(ColorExposure, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(ColorExposure, double);
 
+  /// The ranks the receivers are spread over (null: this process alone).
+  virtual void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  /// Seconds and bytes received in the last execution's collectives (0 serially).
+  vtkGetMacro(CommunicationTime, double);
+  vtkGetMacro(CommunicationBytes, double);
+
   /// The plan of the last execution, one line per decision.
   const std::vector<std::string>& GetPlan() const { return this->Plan; }
 
@@ -115,8 +135,9 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   // The stages of RequestData.
-  bool CheckReceivers(vtkPolyData* receivers);
-  bool PrepareBake(vtkPolyData* proxies);
+  // An empty string when fine, else the reason.
+  std::string CheckReceivers(vtkPolyData* receivers);
+  std::string PrepareBake(vtkPolyData* proxies);
   bool ClusterReceivers(vtkPolyData* receivers, vtkDataArray* normals);
   void ShadeReceivers(vtkPolyData* receivers, vtkDataArray* normals, vtkPolyData* output);
 
@@ -128,6 +149,8 @@ protected:
   std::unique_ptr<Clusters> ReceiverClusters;
   std::vector<std::string> Plan;
   double ColorExposure = 1.0;
+  vtkMultiProcessController* Controller = nullptr;
+  double CommunicationTime = 0.0, CommunicationBytes = 0.0;
 
 private:
   vtkPGIGlobalIllumination(const vtkPGIGlobalIllumination&) = delete;

@@ -2,6 +2,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkObjectFactory.h"
+#include "vtkPGIGatherProxies.h"
 #include "vtkPGIImageSpaceGIPass.h"
 #include "vtkPVSynchronizedRenderer.h"
 
@@ -11,6 +12,7 @@ vtkStandardNewMacro(vtkPGIImageSpaceGIView);
 
 vtkPGIImageSpaceGIView::vtkPGIImageSpaceGIView()
   : Pass(vtkPGIImageSpaceGIPass::New())
+  , Gather(vtkPGIGatherProxies::New())
 {
   this->SynchronizedRenderers->SetRenderPass(this->Pass);
   this->SynchronizedRenderers->SetUseDepthBuffer(true);
@@ -19,11 +21,23 @@ vtkPGIImageSpaceGIView::vtkPGIImageSpaceGIView()
 vtkPGIImageSpaceGIView::~vtkPGIImageSpaceGIView()
 {
   this->Pass->Delete();
+  this->Gather->Delete();
 }
 
 void vtkPGIImageSpaceGIView::SetProxiesAlgorithm(vtkAlgorithm* source)
 {
-  this->Pass->SetProxiesConnection(source ? source->GetOutputPort(0) : nullptr);
+  // Under MPI every rank's pass splats every rank's proxies.
+  this->Gather->SetInputConnection(source ? source->GetOutputPort(0) : nullptr);
+  this->Pass->SetProxiesConnection(source ? this->Gather->GetOutputPort() : nullptr);
+}
+
+void vtkPGIImageSpaceGIView::Update()
+{
+  if (this->Gather->GetNumberOfInputConnections(0) > 0)
+  {
+    this->Gather->Update();
+  }
+  this->Superclass::Update();
 }
 
 void vtkPGIImageSpaceGIView::SetSettings(vtkPGIGISettings* settings)

@@ -10,6 +10,9 @@
  * (SetProxiesAlgorithm, e.g. Sphere Proxies) on the processes that render
  * (builtin sessions, pvbatch, a pvserver whose data and render servers are
  * one). The pass's knobs are forwarded; GetPass gives the pass itself.
+ * Under MPI the proxies are all-gathered (vtkPGIGatherProxies) during the
+ * view's Update, on every rank, so each rank's pass splats every rank's
+ * spheres over its own geometry before IceT composites the pictures.
  */
 #ifndef vtkPGIImageSpaceGIView_h
 #define vtkPGIImageSpaceGIView_h
@@ -21,6 +24,7 @@
 
 class vtkAlgorithm;
 class vtkPGIGISettings;
+class vtkPGIGatherProxies;
 class vtkPGIImageSpaceGIPass;
 class vtkPGILighting;
 
@@ -44,11 +48,17 @@ public:
 
   vtkPGIImageSpaceGIPass* GetPass() { return this->Pass; }
 
+  /// Brings the proxies up to date on every rank together (their gather is
+  /// collective), so that the pass's render-time update needs no other rank:
+  /// a rank with nothing to draw may skip the pass.
+  void Update() override;
+
 protected:
   vtkPGIImageSpaceGIView();
   ~vtkPGIImageSpaceGIView() override;
 
   vtkPGIImageSpaceGIPass* Pass;
+  vtkPGIGatherProxies* Gather;
   std::string GIStatus;
 
 private:

@@ -1,9 +1,11 @@
 #include "vtkPGISurfaceRepresentation.h"
 
+#include "pgiParallel.h"
 #include "vtkAppendPolyData.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPGIGICompositePolyDataMapper.h"
 #include "vtkPGIGISettings.h"
@@ -129,6 +131,11 @@ int vtkPGISurfaceRepresentation::RequestData(
   vtkPolyData* connected = inputVector[1]->GetNumberOfInformationObjects() > 0
     ? vtkPolyData::GetData(inputVector[1], 0)
     : nullptr;
+  // Under MPI (pvbatch, pvserver) every data-server rank runs this with its
+  // own piece; the proxies are made global here, so each rank's mapper
+  // shades its piece against all of them.
+  vtkMultiProcessController* controller =
+    proxygi::parallel::Active(vtkMultiProcessController::GetGlobalController());
   if (connected)
   {
     this->Proxies = vtkSmartPointer<vtkPolyData>::New();
@@ -137,25 +144,36 @@ int vtkPGISurfaceRepresentation::RequestData(
   else
   {
     // ParaView marks a representation modified on any property change:
-    // fit again only when the data or the sphere count changed.
+    // fit again only when the data or the sphere count changed (on any rank).
     vtkDataObject* input = inputVector[0]->GetNumberOfInformationObjects() > 0
       ? vtkDataObject::GetData(inputVector[0], 0)
       : nullptr;
     const vtkMTimeType inputTime = input ? input->GetMTime() : 0;
-    if (input != this->FittedInput || inputTime != this->FittedTime ||
-      this->NumberOfAutomaticProxies != this->FittedCount || this->FittedConnected)
+    if (proxygi::parallel::AnyTrue(controller,
+          input != this->FittedInput || inputTime != this->FittedTime ||
+            this->NumberOfAutomaticProxies != this->FittedCount || this->FittedConnected))
     {
-      this->FitAutomaticProxies();
+      this->FitAutomaticProxies(controller);
       this->FittedInput = input;
       this->FittedTime = inputTime;
       this->FittedCount = this->NumberOfAutomaticProxies;
     }
   }
   this->FittedConnected = connected != nullptr;
+  std::string error;
+  vtkSmartPointer<vtkPolyData> global =
+    proxygi::parallel::GatherProxies(controller, this->Proxies, error);
+  if (!global)
+  {
+    vtkErrorMacro(<< "GI proxies: " << error << ".");
+    this->Proxies = vtkSmartPointer<vtkPolyData>::New();
+    return 1;
+  }
+  this->Proxies = global;
   return 1;
 }
 
-void vtkPGISurfaceRepresentation::FitAutomaticProxies()
+void vtkPGISurfaceRepresentation::FitAutomaticProxies(vtkMultiProcessController* controller)
 {
   vtkDataObject* surface = this->MultiBlockMaker->GetOutputDataObject(0);
   std::vector<vtkPolyData*> blocks, pieces;
@@ -188,6 +206,26 @@ void vtkPGISurfaceRepresentation::FitAutomaticProxies()
     }
   }
   this->Proxies = vtkSmartPointer<vtkPolyData>::New();
+  // Under MPI the count is shared by the ranks' triangles (every rank
+  // takes part in the count, even with nothing to fit).
+  long long triangles = 0;
+  for (vtkPolyData* piece : pieces)
+  {
+    triangles += piece->GetNumberOfPolys();
+  }
+  const std::vector<long long> all = proxygi::parallel::AllGatherCounts(controller, triangles);
+  long long total = 0;
+  for (long long t : all)
+  {
+    total += t;
+  }
+  int count = this->NumberOfAutomaticProxies;
+  if (controller && total > 0 && triangles > 0)
+  {
+    count = std::max(1,
+      static_cast<int>(std::lround(
+        static_cast<double>(count) * static_cast<double>(triangles) / static_cast<double>(total))));
+  }
   if (this->NumberOfAutomaticProxies == 0 || pieces.empty())
   {
     return;
@@ -202,9 +240,10 @@ void vtkPGISurfaceRepresentation::FitAutomaticProxies()
     append->AddInputData(bare);
   }
   vtkNew<vtkPGISphereSetApproximation> fit;
+  fit->SetController(nullptr); // this rank's share; gathered by RequestData
   fit->SetInputConnection(append->GetOutputPort());
   fit->SetMethodToKMeans();
-  fit->SetNumberOfSpheres(this->NumberOfAutomaticProxies);
+  fit->SetNumberOfSpheres(count);
   fit->SetSeed(1);
   fit->Update();
   this->Proxies->ShallowCopy(fit->GetOutput());
@@ -220,11 +259,20 @@ int vtkPGISurfaceRepresentation::ProcessViewRequest(
   if (request_type == vtkPVView::REQUEST_UPDATE())
   {
     // The proxies travel to the rendering processes as a second piece.
-    vtkPVView::SetPiece(inInfo, this, this->Proxies, 0, 1);
+    // Under MPI every rank holds the global set already: only rank 0's
+    // travels, so that a client rendering locally gets it once.
+    vtkMultiProcessController* controller =
+      proxygi::parallel::Active(vtkMultiProcessController::GetGlobalController());
+    vtkNew<vtkPolyData> none;
+    vtkPVView::SetPiece(inInfo, this,
+      !controller || controller->GetLocalProcessId() == 0 ? this->Proxies.Get() : none.Get(), 0, 1);
   }
   else if (request_type == vtkPVView::REQUEST_RENDER())
   {
-    auto* proxies = vtkPolyData::SafeDownCast(vtkPVView::GetDeliveredPiece(inInfo, this, 1));
+    // Server ranks under MPI shade with their own (global) copy.
+    auto* proxies = proxygi::parallel::Active(vtkMultiProcessController::GetGlobalController())
+      ? this->Proxies.Get()
+      : vtkPolyData::SafeDownCast(vtkPVView::GetDeliveredPiece(inInfo, this, 1));
     GIMapper(this->Mapper)->SetProxies(proxies);
     GIMapper(this->LODMapper)->SetProxies(proxies);
   }

@@ -15,6 +15,12 @@
  * The GI knobs (SetSettings) and the light (SetLighting) are shared by the
  * full-resolution and the LOD mapper. GI is recomputed when the geometry,
  * the proxies, the light or a knob change; camera moves only re-render.
+ *
+ * Under MPI (pvbatch, pvserver with several ranks) each rank draws its own
+ * piece; the proxies (connected or automatic, the automatic count shared by
+ * the ranks' triangles) are all-gathered in rank order unless they are
+ * global already (Sphere Proxies' are), so each rank's mapper shades its
+ * piece against all of them and IceT composites the pictures.
  */
 #ifndef vtkPGISurfaceRepresentation_h
 #define vtkPGISurfaceRepresentation_h
@@ -26,6 +32,7 @@
 
 #include <string>
 
+class vtkMultiProcessController;
 class vtkPGIGISettings;
 class vtkPGILighting;
 class vtkPolyData;
@@ -69,7 +76,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /// Proxies bounding the surface this representation draws.
-  void FitAutomaticProxies();
+  void FitAutomaticProxies(vtkMultiProcessController* controller);
 
   int NumberOfAutomaticProxies = 32;
   vtkSmartPointer<vtkPolyData> Proxies;
