@@ -340,8 +340,7 @@ int CheckPartition(vtkMultiProcessController* controller, const char* name, vtkP
     for (auto other = std::next(range.first); other != range.second; ++other)
     {
       ++boundary;
-      seams +=
-        std::memcmp(other->second.data(), range.first->second.data(), sizeof(float) * 3) ? 1 : 0;
+      seams += other->second != range.first->second ? 1 : 0;
     }
     it = range.second;
   }
@@ -426,7 +425,7 @@ int CheckReference(
     auto range = gathered.equal_range(s.first);
     for (auto it = range.first; it != range.second; ++it, ++compared)
     {
-      differing += std::memcmp(it->second.data(), s.second.data(), sizeof(float) * 3) ? 1 : 0;
+      differing += it->second != s.second ? 1 : 0;
     }
   }
   std::printf("reference np=%d: %ld receiver results compared with serial, %ld differ; %.0f "
