@@ -152,41 +152,35 @@ bool AllOk(vtkMultiProcessController* controller, bool ok, const std::string& lo
   return failing == 0;
 }
 
-bool AnyTrue(vtkMultiProcessController* controller, bool value)
+namespace
+{
+// One value reduced over the ranks (serial: the value itself).
+double ReduceOne(vtkMultiProcessController* controller, double value, int operation)
 {
   vtkMultiProcessController* c = Active(controller);
   if (!c)
   {
     return value;
   }
-  const int mine = value ? 1 : 0;
-  int any = 0;
-  c->AllReduce(&mine, &any, 1, vtkCommunicator::MAX_OP);
-  return any != 0;
+  double result = 0.0;
+  c->AllReduce(&value, &result, 1, operation);
+  return result;
+}
+} // namespace
+
+bool AnyTrue(vtkMultiProcessController* controller, bool value)
+{
+  return ReduceOne(controller, value ? 1.0 : 0.0, vtkCommunicator::MAX_OP) > 0.0;
 }
 
 double Sum(vtkMultiProcessController* controller, double value)
 {
-  vtkMultiProcessController* c = Active(controller);
-  if (!c)
-  {
-    return value;
-  }
-  double sum = 0.0;
-  c->AllReduce(&value, &sum, 1, vtkCommunicator::SUM_OP);
-  return sum;
+  return ReduceOne(controller, value, vtkCommunicator::SUM_OP);
 }
 
 double Max(vtkMultiProcessController* controller, double value)
 {
-  vtkMultiProcessController* c = Active(controller);
-  if (!c)
-  {
-    return value;
-  }
-  double most = 0.0;
-  c->AllReduce(&value, &most, 1, vtkCommunicator::MAX_OP);
-  return most;
+  return ReduceOne(controller, value, vtkCommunicator::MAX_OP);
 }
 
 std::vector<long long> AllGatherCounts(
