@@ -203,6 +203,13 @@ def distributed():
                              ColorExposure=0.5)
     pictures = {}
     view = CreateView("RenderView")
+    # A rank that failed ParaView's display check turns distributed rendering
+    # off everywhere; the first render would then hang (rank 0 alone in a
+    # collective), so stop here and say why.
+    if ranks > 1 and not view.GetClientSideObject().GetRemoteRenderingAvailable():
+        check(False, "ParaView's distributed rendering is available on every rank (a rank could not "
+              "connect to the X server: is Xvfb running with -noreset?)")
+        finish()
     shown = Show(lit, view)
     ColorBy(shown, ("POINTS", "RadianceSRGB"))
     shown.MapScalars = 0
