@@ -154,19 +154,35 @@ bool AllOk(vtkMultiProcessController* controller, bool ok, const std::string& lo
 
 namespace
 {
-// One value reduced over the ranks (serial: the value itself).
-double ReduceOne(vtkMultiProcessController* controller, double value, int operation)
+// Values reduced over the ranks in place (serial: the values themselves).
+void ReduceEach(vtkMultiProcessController* controller, double* values, int count, int operation)
 {
   vtkMultiProcessController* c = Active(controller);
-  if (!c)
+  if (!c || count <= 0)
   {
-    return value;
+    return;
   }
-  double result = 0.0;
-  c->AllReduce(&value, &result, 1, operation);
-  return result;
+  std::vector<double> result(static_cast<std::size_t>(count));
+  c->AllReduce(values, result.data(), count, operation);
+  std::copy(result.begin(), result.end(), values);
+}
+
+double ReduceOne(vtkMultiProcessController* controller, double value, int operation)
+{
+  ReduceEach(controller, &value, 1, operation);
+  return value;
 }
 } // namespace
+
+void SumEach(vtkMultiProcessController* controller, double* values, int count)
+{
+  ReduceEach(controller, values, count, vtkCommunicator::SUM_OP);
+}
+
+void MaxEach(vtkMultiProcessController* controller, double* values, int count)
+{
+  ReduceEach(controller, values, count, vtkCommunicator::MAX_OP);
+}
 
 bool AnyTrue(vtkMultiProcessController* controller, bool value)
 {

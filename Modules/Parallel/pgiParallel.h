@@ -60,6 +60,11 @@ PROXYGIPARALLEL_EXPORT bool AllOk(vtkMultiProcessController* controller, bool ok
 PROXYGIPARALLEL_EXPORT bool AnyTrue(vtkMultiProcessController* controller, bool value);
 PROXYGIPARALLEL_EXPORT double Sum(vtkMultiProcessController* controller, double value);
 PROXYGIPARALLEL_EXPORT double Max(vtkMultiProcessController* controller, double value);
+/// The same for `count` values at once, in place (one collective).
+PROXYGIPARALLEL_EXPORT void SumEach(
+  vtkMultiProcessController* controller, double* values, int count);
+PROXYGIPARALLEL_EXPORT void MaxEach(
+  vtkMultiProcessController* controller, double* values, int count);
 
 /// Collective: one integer per rank, gathered on every rank in rank order.
 PROXYGIPARALLEL_EXPORT std::vector<long long> AllGatherCounts(

@@ -294,6 +294,8 @@ void vtkPGISphereLightSampler::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "Controller: " << this->Controller << " ("
      << proxygi::parallel::Ranks(this->Controller) << " ranks)\n";
+  os << indent << "NumberOfRays: " << this->NumberOfRays << "\n";
+  os << indent << "CommunicationBytes: " << this->CommunicationBytes << "\n";
 }
 
 int vtkPGISphereLightSampler::FillInputPortInformation(int, vtkInformation* info)
@@ -443,10 +445,12 @@ int vtkPGISphereLightSampler::RequestData(
     rtcCommitScene(o.Scene);
   }
   // The whole mesh's extent sets the step between hits, on every rank alike.
+  double extent[6] = { -lo[0], -lo[1], -lo[2], hi[0], hi[1], hi[2] };
+  proxygi::parallel::MaxEach(controller, extent, 6);
   for (int c = 0; c < 3; ++c)
   {
-    lo[c] = -proxygi::parallel::Max(controller, -lo[c]);
-    hi[c] = proxygi::parallel::Max(controller, hi[c]);
+    lo[c] = -extent[c];
+    hi[c] = extent[3 + c];
   }
   const double diagonal =
     std::sqrt(std::pow(hi[0] - lo[0], 2) + std::pow(hi[1] - lo[1], 2) + std::pow(hi[2] - lo[2], 2));
@@ -458,6 +462,7 @@ int vtkPGISphereLightSampler::RequestData(
   // Every sphere's rays, geodesic then albedo directions: this piece's candidates.
   const std::size_t rays = static_cast<std::size_t>(m) + rule.Size();
   const std::size_t record = rays * CandidateSize;
+  this->NumberOfRays = static_cast<double>(ns) * static_cast<double>(rays);
   std::vector<double> candidates(static_cast<std::size_t>(ns) * record);
   if (device)
   {

@@ -89,6 +89,8 @@ public:
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
   /// Bytes this rank received in the last update (0 serially).
   vtkGetMacro(CommunicationBytes, double);
+  /// Rays this rank cast at its piece in the last update (every sphere's).
+  vtkGetMacro(NumberOfRays, double);
 
 protected:
   vtkPGISphereLightSampler();
@@ -103,6 +105,7 @@ protected:
   double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
   char* AlbedoArrayName = nullptr;
   vtkMultiProcessController* Controller = nullptr;
+  double NumberOfRays = 0;
   double CommunicationBytes = 0.0;
 
 private:

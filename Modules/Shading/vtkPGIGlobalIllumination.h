@@ -57,7 +57,10 @@
  * with an empty piece takes part and outputs an empty polydata with the
  * arrays. An error on one rank (bad input) is an error on every rank, with
  * that rank's reason: no rank waits forever. Per receiver the shading needs
- * no communication; hierarchy cuts are per receiver cluster of the piece.
+ * no communication. Hierarchy cuts are per receiver cluster; under MPI the
+ * clusters are cells of a grid over all ranks' receivers (split by normal
+ * axis) instead of Lloyd clusters of the piece, so that a point on a
+ * partition boundary gets the same cut, hence the same result, on both ranks.
  *
  * Errors: no receivers, NaN/Inf in receiver points or proxies, proxies
  * without a Radius array, a bad environment. A zero, NaN or Inf normal (as

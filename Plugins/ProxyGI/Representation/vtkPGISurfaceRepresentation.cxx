@@ -11,6 +11,7 @@
 #include "vtkPGIGISettings.h"
 #include "vtkPGILighting.h"
 #include "vtkPGISphereSetApproximation.h"
+#include "vtkPVRenderView.h"
 #include "vtkPVView.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -266,6 +267,11 @@ int vtkPGISurfaceRepresentation::ProcessViewRequest(
     vtkNew<vtkPolyData> none;
     vtkPVView::SetPiece(inInfo, this,
       !controller || controller->GetLocalProcessId() == 0 ? this->Proxies.Get() : none.Get(), 0, 1);
+    // The light (an environment file the server reads) lives where the
+    // data does: a client would draw the delivered geometry without it, so
+    // with a server the frame is drawn there (ignored without one).
+    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    vtkPVRenderView::SetRequiresDistributedRenderingLOD(inInfo, this, true);
   }
   else if (request_type == vtkPVView::REQUEST_RENDER())
   {
