@@ -19,12 +19,7 @@ from paraview.simple import *
 import proxygi_scene
 
 LoadPlugin(plugin, remote=False, ns=globals())
-bunny, ground, scene, _ = proxygi_scene.build(globals(), mesh)
-bunny_n = GenerateSurfaceNormals(Input=bunny, Splitting=0)
-ground_n = GenerateSurfaceNormals(Input=ground, Splitting=0)
-objects = MergeBlocks(Input=GroupDatasets(Input=[bunny_n, ground_n]))
-receivers = ExtractSurface(Input=RedistributeDataSet(Input=objects))
-proxies = SphereProxies(Input=bunny_n, NumberOfSpheres=32, Method="KMeans")
+_, _, receivers, proxies = proxygi_scene.redistributed(globals(), mesh)
 paraview.simple._DisableFirstRenderCameraReset()
 moved = None
 if mode == "filter":

@@ -36,6 +36,23 @@ def build(plugin, mesh, fit=False):
     return bunny, ground, scene, proxies
 
 
+def redistributed(plugin, mesh):
+    """The distributed runs' scene: returns (bunny_n, ground_n, receivers,
+    proxies). Normals of the whole objects before the split (a point on a
+    cut has one normal on both ranks); the blocks merged before
+    RedistributeDataSet (ParaView 5.11's drops cells of a multiblock on 3
+    ranks); 32 k-means proxies of the whole bunny."""
+    from paraview.simple import (ExtractSurface, GenerateSurfaceNormals, MergeBlocks,
+                                 RedistributeDataSet)
+    bunny, ground, _, _ = build(plugin, mesh)
+    bunny_n = GenerateSurfaceNormals(Input=bunny, Splitting=0)
+    ground_n = GenerateSurfaceNormals(Input=ground, Splitting=0)
+    objects = MergeBlocks(Input=GroupDatasets(Input=[bunny_n, ground_n]))
+    receivers = ExtractSurface(Input=RedistributeDataSet(Input=objects))
+    proxies = plugin["SphereProxies"](Input=bunny_n, NumberOfSpheres=32, Method="KMeans")
+    return bunny_n, ground_n, receivers, proxies
+
+
 def frame(view, size=SIZE):
     """Black background, no axes, the baselines' camera (call after the first Show)."""
     view.ViewSize = size
