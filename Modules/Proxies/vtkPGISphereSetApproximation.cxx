@@ -260,8 +260,12 @@ int vtkPGISphereSetApproximation::RequestData(
   }
   else if (auto* pd = vtkPolyData::SafeDownCast(input))
   {
-    // Under MPI a rank's piece may be empty: it bounds nothing.
-    ok = AddPolyData(pd, "the input mesh", objects, error, warnings, controller != nullptr);
+    // Under MPI a rank's piece may be empty (ParaView's readers fill rank 0
+    // only): it bounds nothing, and is not worth a warning on every rank.
+    if (!controller || pd->GetNumberOfPoints() > 0)
+    {
+      ok = AddPolyData(pd, "the input mesh", objects, error, warnings, controller != nullptr);
+    }
   }
   else if (auto* pdc = vtkPartitionedDataSetCollection::SafeDownCast(input))
   {
