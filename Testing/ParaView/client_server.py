@@ -6,7 +6,7 @@
 # Checked: the server shades every piece (points on the cuts counted on
 # both ranks), and each picture is the same whichever process draws it (a
 # ProxyGI Surface the client drew without the server's light once came out
-# white and unshadowed).
+# white and unshadowed), the image-space view included.
 import os
 import sys
 
@@ -54,11 +54,26 @@ def pictures(where, threshold):
     SaveScreenshot(os.path.join(work, where + "-surface.png"), view,
                    ImageResolution=proxygi_scene.SIZE)
     Delete(view)
+    # The image-space view (its GIProxies property names a source that
+    # lives on the server only: the client once aborted on it).
+    view = CreateView("ProxyGIImageSpaceRenderView")
+    Show(receivers, view)
+    view.GIProxies = proxies
+    view.GIEnvironmentFileName = environment
+    proxygi_scene.frame(view)
+    Render(view)
+    SaveScreenshot(os.path.join(work, where + "-image-space.png"), view,
+                   ImageResolution=proxygi_scene.SIZE)
+    view.GIProxies = None
+    Render(view)
+    SaveScreenshot(os.path.join(work, where + "-image-space-unshadowed.png"), view,
+                   ImageResolution=proxygi_scene.SIZE)
+    Delete(view)
 
 
 pictures("client", 1e9)  # geometry below the threshold: delivered to the client
 pictures("server", 0.0)  # always drawn on the server, IceT-composited
-for kind in ("filter", "surface"):
+for kind in ("filter", "surface", "image-space"):
     a = pixels(os.path.join(work, "client-%s.png" % kind))
     b = pixels(os.path.join(work, "server-%s.png" % kind))
     diff = abs(a - b)
@@ -68,5 +83,10 @@ for kind in ("filter", "surface"):
     check(lit_pixels > 0.2, kind + ": the scene is drawn")
     check(diff.mean() < 1.0 and (diff.max(axis=1) > 10).mean() < 0.01,
           kind + ": the same picture whichever process draws it")
+shadow = abs(pixels(os.path.join(work, "server-image-space.png")) -
+             pixels(os.path.join(work, "server-image-space-unshadowed.png")))
+print("image-space: with proxies against without: mean %.2f, largest %.0f of 255"
+      % (shadow.mean(), shadow.max()))
+check(shadow.mean() > 1.0, "image-space: the server's pass splats the proxies")
 Disconnect()
 finish()

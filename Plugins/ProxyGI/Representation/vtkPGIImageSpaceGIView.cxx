@@ -40,6 +40,11 @@ void vtkPGIImageSpaceGIView::Update()
   this->Superclass::Update();
 }
 
+void vtkPGIImageSpaceGIView::SetRemoteRenderingThreshold(double)
+{
+  this->Superclass::SetRemoteRenderingThreshold(0.0);
+}
+
 void vtkPGIImageSpaceGIView::SetSettings(vtkPGIGISettings* settings)
 {
   this->Pass->SetSettings(settings);

@@ -53,6 +53,10 @@ public:
   /// a rank with nothing to draw may skip the pass.
   void Update() override;
 
+  /// Always 0: with a server, frames are drawn on its ranks, where the
+  /// proxies and the light are (the client has neither).
+  void SetRemoteRenderingThreshold(double) override;
+
 protected:
   vtkPGIImageSpaceGIView();
   ~vtkPGIImageSpaceGIView() override;
