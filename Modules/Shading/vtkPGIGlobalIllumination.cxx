@@ -259,6 +259,169 @@ std::string vtkPGIGlobalIllumination::PrepareBake(vtkPolyData* proxies)
   return std::string();
 }
 
+namespace
+{
+// What each receiver cluster's hierarchy cut is made from: bounding sphere
+// (centre, radius; negative: an empty cluster, no cut) and the receiver
+// position and normal the cut's ratios are fitted at.
+struct ClusterFrames
+{
+  std::vector<int> Of;
+  std::vector<std::array<double, 3>> Centres, At, Facing;
+  std::vector<double> Radius;
+  std::string How;
+};
+
+// Under MPI the clusters must not depend on the partition, or a point
+// on a partition boundary would get another cut, hence a seam, on each
+// rank: cells of a grid over all ranks' receivers (the cell size a
+// power-of-two fraction of the global diagonal, so near-equal receiver
+// counts give the same grid), split by the normal's dominant axis; the
+// cut is taken from the cell's sphere, its centre and that axis.
+// Collective.
+ClusterFrames GridClusters(vtkMultiProcessController* controller, vtkPolyData* receivers,
+  const std::vector<double>& points, vtkIdType n, vtkDataArray* normals, int perCluster)
+{
+  ClusterFrames f;
+  double extent[6] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+    -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      extent[c] = std::max(extent[c], -points[3 * i + c]);
+      extent[3 + c] = std::max(extent[3 + c], points[3 * i + c]);
+    }
+  }
+  proxygi::parallel::MaxEach(controller, extent, 6);
+  double totals[2] = { static_cast<double>(n), 0.0 };
+  vtkCellArray* polys = receivers ? receivers->GetPolys() : nullptr;
+  if (polys && n > 0)
+  {
+    // Surface area: with ~perCluster receivers per cell, cells are about
+    // sqrt(area * perCluster / receivers) wide on a surface.
+    vtkUnsignedCharArray* ghosts = receivers->GetCellGhostArray();
+    const vtkIdType verts = receivers->GetNumberOfVerts() + receivers->GetNumberOfLines();
+    vtkIdType cellId = verts, count = 0;
+    const vtkIdType* ids = nullptr;
+    for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cellId)
+    {
+      if (ghosts && ghosts->GetValue(cellId) != 0)
+      {
+        continue;
+      }
+      for (vtkIdType k = 2; k < count; ++k)
+      {
+        const double* a = &points[3 * ids[0]];
+        const double* p1 = &points[3 * ids[k - 1]];
+        const double* p2 = &points[3 * ids[k]];
+        const double u[3] = { p1[0] - a[0], p1[1] - a[1], p1[2] - a[2] };
+        const double v[3] = { p2[0] - a[0], p2[1] - a[1], p2[2] - a[2] };
+        double w[3];
+        vtkMath::Cross(u, v, w);
+        totals[1] += 0.5 * vtkMath::Norm(w);
+      }
+    }
+  }
+  proxygi::parallel::SumEach(controller, totals, 2);
+  const double lo[3] = { -extent[0], -extent[1], -extent[2] };
+  const double diagonal = std::sqrt(vtkMath::Distance2BetweenPoints(lo, extent + 3));
+  if (n == 0 || !(diagonal > 0.0) || !std::isfinite(diagonal))
+  {
+    return f;
+  }
+  double size = totals[1] > 0.0 ? std::sqrt(totals[1] * perCluster / totals[0])
+                                : diagonal * std::cbrt(perCluster / totals[0]);
+  size = diagonal * std::exp2(std::round(std::log2(std::min(1.0, size / diagonal))));
+  std::map<std::array<long long, 4>, int> cellOf;
+  f.Of.resize(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double nd[3];
+    UnitNormal(normals, i, nd);
+    int axis = 0;
+    for (int c = 1; c < 3; ++c)
+    {
+      axis = std::abs(nd[c]) > std::abs(nd[axis]) ? c : axis;
+    }
+    std::array<long long, 4> key;
+    for (int c = 0; c < 3; ++c)
+    {
+      key[c] = static_cast<long long>(std::floor((points[3 * i + c] - lo[c]) / size));
+    }
+    key[3] = 2 * axis + (nd[axis] < 0.0 ? 1 : 0);
+    auto inserted = cellOf.emplace(key, static_cast<int>(f.Centres.size()));
+    if (inserted.second)
+    {
+      std::array<double, 3> centre, axisNormal = { 0.0, 0.0, 0.0 };
+      for (int c = 0; c < 3; ++c)
+      {
+        centre[c] = lo[c] + (static_cast<double>(key[c]) + 0.5) * size;
+      }
+      axisNormal[axis] = key[3] % 2 ? -1.0 : 1.0;
+      f.Centres.push_back(centre);
+      f.At.push_back(centre);
+      f.Facing.push_back(axisNormal);
+      f.Radius.push_back(0.5 * std::sqrt(3.0) * size);
+    }
+    f.Of[i] = inserted.first->second;
+  }
+  std::ostringstream line;
+  line << "grid cells of " << size << " by normal axis, the same on every rank";
+  f.How = line.str();
+  return f;
+}
+
+// Serially: Lloyd clusters of the receivers, each cut from its bounding
+// sphere and the receiver nearest its centre.
+ClusterFrames LloydFrames(
+  const std::vector<double>& points, vtkIdType n, vtkDataArray* normals, int perCluster)
+{
+  ClusterFrames f;
+  if (n == 0)
+  {
+    return f;
+  }
+  const int clusters = static_cast<int>(std::max<vtkIdType>(1, (n + perCluster - 1) / perCluster));
+  // Seeds evenly along the point order, then Lloyd (the sphere tree's).
+  f.Centres.resize(clusters);
+  for (int k = 0; k < clusters; ++k)
+  {
+    std::copy_n(&points[3 * (n * k / clusters)], 3, f.Centres[k].data());
+  }
+  f.Of = proxygi::LloydClusters(points.data(), n, f.Centres, 4);
+  // Per cluster: bounding sphere and the receiver nearest its centre.
+  f.Radius.assign(clusters, 0.0);
+  std::vector<vtkIdType> central(clusters, -1);
+  std::vector<double> centralDistance(clusters, VTK_DOUBLE_MAX);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const int k = f.Of[i];
+    const double d2 = vtkMath::Distance2BetweenPoints(&points[3 * i], f.Centres[k].data());
+    f.Radius[k] = std::max(f.Radius[k], std::sqrt(d2));
+    if (d2 < centralDistance[k])
+    {
+      centralDistance[k] = d2;
+      central[k] = i;
+    }
+  }
+  f.At.resize(clusters);
+  f.Facing.resize(clusters);
+  for (int k = 0; k < clusters; ++k)
+  {
+    if (central[k] < 0)
+    {
+      f.Radius[k] = -1.0; // empty: no cut
+      continue;
+    }
+    std::copy_n(&points[3 * central[k]], 3, f.At[k].data());
+    UnitNormal(normals, central[k], f.Facing[k].data());
+  }
+  f.How = "Lloyd clusters of this piece";
+  return f;
+}
+} // namespace
+
 bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataArray* normals)
 {
   Clusters& cl = *this->ReceiverClusters;
@@ -276,151 +439,14 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
   {
     receivers->GetPoint(i, &points[3 * i]);
   }
-  // Per cluster, what its cut is made from: bounding sphere (centre,
-  // radius) and the receiver position and normal the ratios are fitted at.
-  std::vector<std::array<double, 3>> centres, at, facing;
-  std::vector<double> radius;
-  std::string how;
-  if (controller)
+  ClusterFrames f = controller ? GridClusters(controller, receivers, points, n, normals, perCluster)
+                               : LloydFrames(points, n, normals, perCluster);
+  if (f.Centres.empty())
   {
-    // Under MPI the clusters must not depend on the partition, or a point
-    // on a partition boundary would get another cut, hence a seam, on each
-    // rank: cells of a grid over all ranks' receivers (the cell size a
-    // power-of-two fraction of the global diagonal, so near-equal receiver
-    // counts give the same grid), split by the normal's dominant axis; the
-    // cut is taken from the cell's sphere, its centre and that axis.
-    double extent[6] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-      -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        extent[c] = std::max(extent[c], -points[3 * i + c]);
-        extent[3 + c] = std::max(extent[3 + c], points[3 * i + c]);
-      }
-    }
-    proxygi::parallel::MaxEach(controller, extent, 6);
-    double totals[2] = { static_cast<double>(n), 0.0 };
-    vtkCellArray* polys = receivers ? receivers->GetPolys() : nullptr;
-    if (polys && n > 0)
-    {
-      // Surface area: with ~perCluster receivers per cell, cells are about
-      // sqrt(area * perCluster / receivers) wide on a surface.
-      vtkUnsignedCharArray* ghosts = receivers->GetCellGhostArray();
-      const vtkIdType verts = receivers->GetNumberOfVerts() + receivers->GetNumberOfLines();
-      vtkIdType cellId = verts, count = 0;
-      const vtkIdType* ids = nullptr;
-      for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cellId)
-      {
-        if (ghosts && ghosts->GetValue(cellId) != 0)
-        {
-          continue;
-        }
-        for (vtkIdType k = 2; k < count; ++k)
-        {
-          const double* a = &points[3 * ids[0]];
-          const double* p1 = &points[3 * ids[k - 1]];
-          const double* p2 = &points[3 * ids[k]];
-          const double u[3] = { p1[0] - a[0], p1[1] - a[1], p1[2] - a[2] };
-          const double v[3] = { p2[0] - a[0], p2[1] - a[1], p2[2] - a[2] };
-          double w[3];
-          vtkMath::Cross(u, v, w);
-          totals[1] += 0.5 * vtkMath::Norm(w);
-        }
-      }
-    }
-    proxygi::parallel::SumEach(controller, totals, 2);
-    const double lo[3] = { -extent[0], -extent[1], -extent[2] };
-    const double diagonal = std::sqrt(vtkMath::Distance2BetweenPoints(lo, extent + 3));
-    if (n == 0 || !(diagonal > 0.0) || !std::isfinite(diagonal))
-    {
-      return true;
-    }
-    double size = totals[1] > 0.0 ? std::sqrt(totals[1] * perCluster / totals[0])
-                                  : diagonal * std::cbrt(perCluster / totals[0]);
-    size = diagonal * std::exp2(std::round(std::log2(std::min(1.0, size / diagonal))));
-    std::map<std::array<long long, 4>, int> cellOf;
-    cl.Of.resize(static_cast<std::size_t>(n));
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      double nd[3];
-      UnitNormal(normals, i, nd);
-      int axis = 0;
-      for (int c = 1; c < 3; ++c)
-      {
-        axis = std::abs(nd[c]) > std::abs(nd[axis]) ? c : axis;
-      }
-      std::array<long long, 4> key;
-      for (int c = 0; c < 3; ++c)
-      {
-        key[c] = static_cast<long long>(std::floor((points[3 * i + c] - lo[c]) / size));
-      }
-      key[3] = 2 * axis + (nd[axis] < 0.0 ? 1 : 0);
-      auto inserted = cellOf.emplace(key, static_cast<int>(centres.size()));
-      if (inserted.second)
-      {
-        std::array<double, 3> centre, axisNormal = { 0.0, 0.0, 0.0 };
-        for (int c = 0; c < 3; ++c)
-        {
-          centre[c] = lo[c] + (static_cast<double>(key[c]) + 0.5) * size;
-        }
-        axisNormal[axis] = key[3] % 2 ? -1.0 : 1.0;
-        centres.push_back(centre);
-        at.push_back(centre);
-        facing.push_back(axisNormal);
-        radius.push_back(0.5 * std::sqrt(3.0) * size);
-      }
-      cl.Of[i] = inserted.first->second;
-    }
-    std::ostringstream line;
-    line << "grid cells of " << size << " by normal axis, the same on every rank";
-    how = line.str();
+    return true;
   }
-  else
-  {
-    if (n == 0)
-    {
-      return true;
-    }
-    const int clusters =
-      static_cast<int>(std::max<vtkIdType>(1, (n + perCluster - 1) / perCluster));
-    // Seeds evenly along the point order, then Lloyd (the sphere tree's).
-    centres.resize(clusters);
-    for (int k = 0; k < clusters; ++k)
-    {
-      std::copy_n(&points[3 * (n * k / clusters)], 3, centres[k].data());
-    }
-    cl.Of = proxygi::LloydClusters(points.data(), n, centres, 4);
-    // Per cluster: bounding sphere and the receiver nearest its centre.
-    radius.assign(clusters, 0.0);
-    std::vector<vtkIdType> central(clusters, -1);
-    std::vector<double> centralDistance(clusters, VTK_DOUBLE_MAX);
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      const int k = cl.Of[i];
-      const double d2 = vtkMath::Distance2BetweenPoints(&points[3 * i], centres[k].data());
-      radius[k] = std::max(radius[k], std::sqrt(d2));
-      if (d2 < centralDistance[k])
-      {
-        centralDistance[k] = d2;
-        central[k] = i;
-      }
-    }
-    at.resize(clusters);
-    facing.resize(clusters);
-    for (int k = 0; k < clusters; ++k)
-    {
-      if (central[k] < 0)
-      {
-        radius[k] = -1.0; // empty: no cut
-        continue;
-      }
-      std::copy_n(&points[3 * central[k]], 3, at[k].data());
-      UnitNormal(normals, central[k], facing[k].data());
-    }
-    how = "Lloyd clusters of this piece";
-  }
-  const int clusters = static_cast<int>(centres.size());
+  cl.Of = std::move(f.Of);
+  const int clusters = static_cast<int>(f.Centres.size());
   const proxygi::ShadowedIndirect shadowedIndirect(b.Kernel,
     this->Effective->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT
       ? proxygi::SphericalLightBlocking::PerObject
@@ -436,15 +462,15 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
   int used = 0;
   for (int k = 0; k < clusters; ++k)
   {
-    if (radius[k] < 0.0)
+    if (f.Radius[k] < 0.0)
     {
       continue;
     }
-    const float pR[3] = { float(centres[k][0]), float(centres[k][1]), float(centres[k][2]) };
-    const float pf[3] = { float(at[k][0]), float(at[k][1]), float(at[k][2]) };
-    const float nf[3] = { float(facing[k][0]), float(facing[k][1]), float(facing[k][2]) };
+    const float pR[3] = { float(f.Centres[k][0]), float(f.Centres[k][1]), float(f.Centres[k][2]) };
+    const float pf[3] = { float(f.At[k][0]), float(f.At[k][1]), float(f.At[k][2]) };
+    const float nf[3] = { float(f.Facing[k][0]), float(f.Facing[k][1]), float(f.Facing[k][2]) };
     std::vector<int> nodes;
-    cl.Blockers[k] = proxygi::CutHierarchy(b.Hierarchy, pR, float(radius[k]), pf, nf, maxAngle,
+    cl.Blockers[k] = proxygi::CutHierarchy(b.Hierarchy, pR, float(f.Radius[k]), pf, nf, maxAngle,
       b.Order, this->Effective->GetSelfShadowRules(), b.RunShadowed ? &nodes : nullptr);
     if (b.RunShadowed)
     {
@@ -460,7 +486,7 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
   std::ostringstream line;
   line << "hierarchy: " << used << " receiver clusters, cuts of "
        << (used ? static_cast<double>(cutTotal) / used : 0.0) << " spheres on average (of "
-       << b.SceneBlockers.Spheres() << " leaves) at " << angle << " degrees (" << how << ")"
+       << b.SceneBlockers.Spheres() << " leaves) at " << angle << " degrees (" << f.How << ")"
        << (b.RunShadowed ? "; spherical lights cut alike, with reflection ratios" : "");
   this->Plan.push_back(line.str());
   return true;
