@@ -40,10 +40,7 @@ elif mode in ("surface", "moving"):
         surface.GIProxies = proxies
     surface.GIEnvironmentFileName = environment
 elif mode == "image-space":
-    view = CreateView("ProxyGIImageSpaceRenderView")
-    Show(receivers, view)
-    view.GIProxies = proxies
-    view.GIEnvironmentFileName = environment
+    view = proxygi_scene.image_space_view(receivers, proxies, environment)
 proxygi_scene.frame(view)
 Render(view)
 start = time.perf_counter()

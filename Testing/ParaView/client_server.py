@@ -56,11 +56,7 @@ def pictures(where, threshold):
     Delete(view)
     # The image-space view (its GIProxies property names a source that
     # lives on the server only: the client once aborted on it).
-    view = CreateView("ProxyGIImageSpaceRenderView")
-    Show(receivers, view)
-    view.GIProxies = proxies
-    view.GIEnvironmentFileName = environment
-    proxygi_scene.frame(view)
+    view = proxygi_scene.image_space_view(receivers, proxies, environment)
     Render(view)
     SaveScreenshot(os.path.join(work, where + "-image-space.png"), view,
                    ImageResolution=proxygi_scene.SIZE)

@@ -53,6 +53,17 @@ def redistributed(plugin, mesh):
     return bunny_n, ground_n, receivers, proxies
 
 
+def image_space_view(receivers, proxies, environment):
+    """A framed image-space view of the receivers with these proxies and map."""
+    from paraview.simple import CreateView, Show
+    view = CreateView("ProxyGIImageSpaceRenderView")
+    Show(receivers, view)
+    view.GIProxies = proxies
+    view.GIEnvironmentFileName = environment
+    frame(view)
+    return view
+
+
 def frame(view, size=SIZE):
     """Black background, no axes, the baselines' camera (call after the first Show)."""
     view.ViewSize = size
