@@ -184,6 +184,17 @@ void MaxEach(vtkMultiProcessController* controller, double* values, int count)
   ReduceEach(controller, values, count, vtkCommunicator::MAX_OP);
 }
 
+void GlobalBox(vtkMultiProcessController* controller, double lo[3], double hi[3])
+{
+  double extent[6] = { -lo[0], -lo[1], -lo[2], hi[0], hi[1], hi[2] };
+  MaxEach(controller, extent, 6);
+  for (int c = 0; c < 3; ++c)
+  {
+    lo[c] = -extent[c];
+    hi[c] = extent[3 + c];
+  }
+}
+
 bool AnyTrue(vtkMultiProcessController* controller, bool value)
 {
   return ReduceOne(controller, value ? 1.0 : 0.0, vtkCommunicator::MAX_OP) > 0.0;

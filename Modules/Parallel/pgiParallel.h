@@ -65,6 +65,10 @@ PROXYGIPARALLEL_EXPORT void SumEach(
   vtkMultiProcessController* controller, double* values, int count);
 PROXYGIPARALLEL_EXPORT void MaxEach(
   vtkMultiProcessController* controller, double* values, int count);
+/// Collective: the box lo..hi becomes the union of every rank's (one
+/// collective; a rank with nothing gives lo = +max, hi = -max).
+PROXYGIPARALLEL_EXPORT void GlobalBox(
+  vtkMultiProcessController* controller, double lo[3], double hi[3]);
 
 /// Collective: one integer per rank, gathered on every rank in rank order.
 PROXYGIPARALLEL_EXPORT std::vector<long long> AllGatherCounts(

@@ -445,13 +445,7 @@ int vtkPGISphereLightSampler::RequestData(
     rtcCommitScene(o.Scene);
   }
   // The whole mesh's extent sets the step between hits, on every rank alike.
-  double extent[6] = { -lo[0], -lo[1], -lo[2], hi[0], hi[1], hi[2] };
-  proxygi::parallel::MaxEach(controller, extent, 6);
-  for (int c = 0; c < 3; ++c)
-  {
-    lo[c] = -extent[c];
-    hi[c] = extent[3 + c];
-  }
+  proxygi::parallel::GlobalBox(controller, lo, hi);
   const double diagonal =
     std::sqrt(std::pow(hi[0] - lo[0], 2) + std::pow(hi[1] - lo[1], 2) + std::pow(hi[2] - lo[2], 2));
 

@@ -283,17 +283,17 @@ ClusterFrames GridClusters(vtkMultiProcessController* controller, vtkPolyData* r
   const std::vector<double>& points, vtkIdType n, vtkDataArray* normals, int perCluster)
 {
   ClusterFrames f;
-  double extent[6] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-    -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX },
+         hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   for (vtkIdType i = 0; i < n; ++i)
   {
     for (int c = 0; c < 3; ++c)
     {
-      extent[c] = std::max(extent[c], -points[3 * i + c]);
-      extent[3 + c] = std::max(extent[3 + c], points[3 * i + c]);
+      lo[c] = std::min(lo[c], points[3 * i + c]);
+      hi[c] = std::max(hi[c], points[3 * i + c]);
     }
   }
-  proxygi::parallel::MaxEach(controller, extent, 6);
+  proxygi::parallel::GlobalBox(controller, lo, hi);
   double totals[2] = { static_cast<double>(n), 0.0 };
   vtkCellArray* polys = receivers ? receivers->GetPolys() : nullptr;
   if (polys && n > 0)
@@ -324,8 +324,7 @@ ClusterFrames GridClusters(vtkMultiProcessController* controller, vtkPolyData* r
     }
   }
   proxygi::parallel::SumEach(controller, totals, 2);
-  const double lo[3] = { -extent[0], -extent[1], -extent[2] };
-  const double diagonal = std::sqrt(vtkMath::Distance2BetweenPoints(lo, extent + 3));
+  const double diagonal = std::sqrt(vtkMath::Distance2BetweenPoints(lo, hi));
   if (n == 0 || !(diagonal > 0.0) || !std::isfinite(diagonal))
   {
     return f;
