@@ -1,35 +1,93 @@
 // Per-receiver soft-shadow cost: receivers x blockers per second at SH order
-// 3-6 (log accumulation with the self-shadow rules, then HYB), next to the
-// machine's measured single-core float multiply-add peak, so the kernel's
-// efficiency can be read off one run. Plan/...: the whole filter with an
+// 3-6 (log accumulation with the self-shadow rules, then HYB), scalar and
+// batched on every instruction set the CPU runs, next to the machine's float
+// multiply-add peak measured in the same run (the widest FMA, one core and
+// all cores), so the kernel's efficiency reads off one run. Plan/...: the whole filter with an
 // effect the scene does not call for (skipped) against the effect off, and
 // against the effect running, to show a skipped effect costs nothing.
 // Bake/...: an update that reuses the shared precompute against one that
 // rebuilds it.
+#include "pgiBenchPeak.h"
+#include "pgiSHBatch.h"
 #include "pgiSoftShadows.h"
+#ifdef PROXYGI_BENCH_SCENES
+#include "pgiScene.h"
+#include "pgiSceneSetup.h"
+#endif
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 
 #include <benchmark/benchmark.h>
 
+#include <chrono>
+#include <cstdio>
 #include <random>
+#include <string>
+#include <thread>
 #include <vector>
 
 using namespace proxygi;
 
 namespace
 {
-// Independent multiply-adds the compiler vectorises (the build's ISA).
+// Flops per receiver-blocker pair the report counts (basis, rotation, sum,
+// rules, asin), for the GFLOP/s counters.
+constexpr double FlopsPerPair = 110.0;
+
+// One core's peak, measured once per process (the kernels' counters use it).
+double OneCorePeak()
+{
+  static const double peak = []()
+  {
+    float sink;
+    proxygi::bench::FmaPeak(1 << 22, &sink); // warm up the clock
+    const auto start = std::chrono::steady_clock::now();
+    const double flops = proxygi::bench::FmaPeak(1 << 26, &sink);
+    return flops / std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }();
+  return peak;
+}
+
+void BenchWidestPeak(benchmark::State& state, int threads)
+{
+  double flops = 0.0;
+  for (auto _ : state)
+  {
+    const long iterations = 1 << 24;
+    std::vector<std::thread> pool;
+    pool.reserve(threads);
+    std::vector<float> sink(threads);
+    for (int t = 0; t < threads; ++t)
+    {
+      pool.emplace_back([&, t]() { proxygi::bench::FmaPeak(iterations, &sink[t]); });
+    }
+    for (std::thread& t : pool)
+    {
+      t.join();
+    }
+    benchmark::DoNotOptimize(sink.data());
+    flops += threads * 2.0 * 12.0 * proxygi::bench::FmaPeakLanes() * iterations;
+  }
+  state.counters["GFLOPS"] = benchmark::Counter(flops / 1e9, benchmark::Counter::kIsRate);
+  state.counters["lanes"] = proxygi::bench::FmaPeakLanes();
+  state.counters["threads"] = threads;
+}
+
+// Independent multiply-adds the compiler vectorises for the build's ISA
+// (baseline x86-64: SSE2, no FMA): what the scalar kernels can reach.
 void BenchFloatPeak(benchmark::State& state)
 {
   constexpr int Lanes = 64;
@@ -57,18 +115,26 @@ void BenchFloatPeak(benchmark::State& state)
     benchmark::Counter(2.0 * Lanes * inner * state.iterations() / 1e9, benchmark::Counter::kIsRate);
 }
 
+// `count` random spheres above the receivers' plane z = 0.
+Blockers RandomBlockers(int count, std::mt19937& rng)
+{
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  Blockers blockers;
+  for (int k = 0; k < count; ++k)
+  {
+    blockers.AddSphere(3 * u(rng), 3 * u(rng), 1.5f + u(rng), 0.2f + 0.1f * u(rng));
+  }
+  return blockers;
+}
+
 void BenchVisibility(benchmark::State& state, int order, int count)
 {
   SoftShadowSettings settings;
   settings.Order = order;
   const SoftShadows shadows(settings);
-  Blockers blockers;
   std::mt19937 rng(1);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  for (int k = 0; k < count; ++k)
-  {
-    blockers.AddSphere(3 * u(rng), 3 * u(rng), 1.5f + u(rng), 0.2f + 0.1f * u(rng));
-  }
+  const Blockers blockers = RandomBlockers(count, rng);
   std::vector<float> receivers(3 * 256);
   for (float& v : receivers)
   {
@@ -87,7 +153,51 @@ void BenchVisibility(benchmark::State& state, int order, int count)
   }
   state.counters["receivers_x_blockers"] =
     benchmark::Counter(double(count) * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["GFLOPS"] = benchmark::Counter(
+    FlopsPerPair * count * state.iterations() / 1e9, benchmark::Counter::kIsRate);
   state.SetItemsProcessed(state.iterations());
+}
+
+// The same receivers and blockers through VisibilityBatch on one target.
+void BenchVisibilityBatch(benchmark::State& state, int order, int count, const std::string& target)
+{
+  if (!proxygi::sh::SetBatchTarget(target))
+  {
+    state.SkipWithError("target not available");
+    return;
+  }
+  SoftShadowSettings settings;
+  settings.Order = order;
+  const SoftShadows shadows(settings);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const Blockers blockers = RandomBlockers(count, rng);
+  constexpr int Receivers = 256;
+  std::vector<float> p(3 * Receivers), n(3 * Receivers);
+  for (int r = 0; r < Receivers; ++r)
+  {
+    p[3 * r] = u(rng);
+    p[3 * r + 1] = u(rng);
+    p[3 * r + 2] = 0.0f;
+    n[3 * r] = n[3 * r + 1] = 0.0f;
+    n[3 * r + 2] = 1.0f;
+  }
+  std::vector<float> g(Receivers * order * order);
+  std::vector<sh::Status> status(Receivers);
+  std::vector<int> used(Receivers);
+  for (auto _ : state)
+  {
+    shadows.VisibilityBatch(
+      Receivers, p.data(), n.data(), blockers, g.data(), status.data(), used.data());
+    benchmark::DoNotOptimize(g.data());
+  }
+  proxygi::sh::SetBatchTarget("");
+  const double pairs = double(count) * Receivers * state.iterations();
+  state.counters["receivers_x_blockers"] = benchmark::Counter(pairs, benchmark::Counter::kIsRate);
+  state.counters["GFLOPS"] =
+    benchmark::Counter(FlopsPerPair * pairs / 1e9, benchmark::Counter::kIsRate);
+  state.counters["peak_GFLOPS"] = OneCorePeak() / 1e9;
+  state.SetItemsProcessed(state.iterations() * Receivers);
 }
 // A grid of (n + 1)^2 receivers on z = 0 facing up, quads as polygons.
 vtkSmartPointer<vtkPolyData> Grid(int n)
@@ -191,10 +301,87 @@ void BenchBake(benchmark::State& state, int count, bool proxiesChange)
     static_cast<double>(gi->GetBake()->GetNumberOfBuilds() - builds) / state.iterations();
   state.SetItemsProcessed(state.iterations() * grid->GetNumberOfPoints());
 }
+#ifdef PROXYGI_BENCH_SCENES
+// The update: the default scene's bunny proxies (64 asked, with the
+// hierarchy) over a 128 x 128 ground grid (16,384 receivers), order 4, HYB,
+// shadows only, the ground plane carried by the light; every update moves
+// the proxies by a small step (the precompute rebuilds, the receivers'
+// clusters stand), on all cores.
+void BenchBunnyOverGround(benchmark::State& state, double hierarchy)
+{
+  std::string error;
+  const SceneDescription scene = DefaultScene();
+  LoadedScene loaded;
+  SceneProxies proxies;
+  if (!BuildScene(scene, loaded, error) ||
+    !BuildSceneProxies(scene, loaded, 64, PROXYGI_BENCH_CACHE, proxies, error))
+  {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  const auto receivers = SceneReceivers(loaded);
+  double bounds[6];
+  receivers.back()->GetBounds(bounds); // the ground
+  vtkSmartPointer<vtkPolyData> ground = Grid(127);
+  vtkPoints* points = ground->GetPoints();
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    points->GetPoint(i, x);
+    points->SetPoint(i, bounds[0] + (x[0] + 3.0) / 6.0 * (bounds[1] - bounds[0]),
+      bounds[2] + (x[1] + 3.0) / 6.0 * (bounds[3] - bounds[2]), bounds[4]);
+  }
+  vtkNew<vtkPGIGlobalIllumination> gi;
+  gi->SetInputData(ground);
+  ConfigureGlobalIllumination(gi, scene, loaded, proxies);
+  vtkPGIGISettings* settings = gi->GetSettings();
+  settings->SetOrder(4);
+  settings->SetExpMethod(vtkPGIGISettings::EXP_HYB);
+  settings->SetIndirect(false);
+  settings->SetLocalLights(false);
+  settings->SetHierarchyAngle(hierarchy);
+  gi->Update();
+  vtkPoints* centres = proxies.Spheres->GetPoints();
+  double step = 1e-4;
+  for (auto _ : state)
+  {
+    for (vtkIdType i = 0; i < centres->GetNumberOfPoints(); ++i)
+    {
+      double c[3];
+      centres->GetPoint(i, c);
+      c[0] += step;
+      centres->SetPoint(i, c);
+    }
+    step = -step;
+    centres->Modified();
+    proxies.Spheres->Modified();
+    gi->Update();
+  }
+  state.counters["updates_per_second"] =
+    benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["receivers"] = static_cast<double>(ground->GetNumberOfPoints());
+  state.counters["leaves"] = static_cast<double>(proxies.Leaves);
+  state.counters["threads"] = vtkSMPTools::GetEstimatedNumberOfThreads();
+  state.counters["bake_builds"] = gi->GetBake()->GetNumberOfBuilds();
+  // The last update's per-stage profile, for the report.
+  if (auto* plan =
+        vtkStringArray::SafeDownCast(gi->GetOutput()->GetFieldData()->GetAbstractArray("Plan")))
+  {
+    for (vtkIdType i = 0; i < plan->GetNumberOfValues(); ++i)
+    {
+      if (plan->GetValue(i).rfind("stages", 0) == 0)
+      {
+        std::fprintf(stderr, "%s\n", plan->GetValue(i).c_str());
+      }
+    }
+  }
+}
+#endif
 } // namespace
 
 int main(int argc, char** argv)
 {
+  vtkSMPTools::SetBackend("STDThread");
   const char* plans[] = { "Plan/shadows only (baseline)", "Plan/bounce on, albedo 0 (skipped)",
     "Plan/bounce on, albedo 0.8 (runs)", "Plan/shadowed bounce on, albedo 0 (skipped)",
     "Plan/shadowed bounce on, albedo 0.8 (runs)", "Plan/local lights on, none (skipped)",
@@ -213,13 +400,46 @@ int main(int argc, char** argv)
       ("Bake/proxies changed (rebuilt)" + proxies).c_str(), BenchBake, count, true)
       ->Unit(benchmark::kMillisecond);
   }
-  benchmark::RegisterBenchmark("FloatPeak", BenchFloatPeak);
+#ifdef PROXYGI_BENCH_SCENES
+  benchmark::RegisterBenchmark(
+    "Update/bunny proxies over a 128x128 ground, shadows only, cuts at 25 degrees",
+    BenchBunnyOverGround, 25.0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+  benchmark::RegisterBenchmark(
+    "Update/bunny proxies over a 128x128 ground, shadows only, every leaf", BenchBunnyOverGround,
+    0.0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+#endif
+  benchmark::RegisterBenchmark("FloatPeak/compiler-vectorised, build ISA", BenchFloatPeak);
+  benchmark::RegisterBenchmark("FloatPeak/widest FMA, one core", BenchWidestPeak, 1)->UseRealTime();
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  benchmark::RegisterBenchmark("FloatPeak/widest FMA, all cores", BenchWidestPeak, cores)
+    ->UseRealTime();
+  for (const std::string& target : proxygi::sh::BatchTargets())
+  {
+    for (int order = 3; order <= 6; ++order)
+    {
+      for (int count : { 16, 64, 256 })
+      {
+        if (order != 4 && target != proxygi::sh::BatchTargets()[0])
+        {
+          continue; // every target at order 4, the best one at every order
+        }
+        benchmark::RegisterBenchmark(("VisibilityBatch/" + target + "/order:" +
+                                       std::to_string(order) + "/blockers:" + std::to_string(count))
+                                       .c_str(),
+          BenchVisibilityBatch, order, count, target);
+      }
+    }
+  }
   for (int order = 3; order <= 6; ++order)
   {
     for (int count : { 16, 64, 256 })
     {
       benchmark::RegisterBenchmark(
-        ("Visibility/order:" + std::to_string(order) + "/blockers:" + std::to_string(count))
+        ("Visibility/scalar/order:" + std::to_string(order) + "/blockers:" + std::to_string(count))
           .c_str(),
         BenchVisibility, order, count);
     }

@@ -22,12 +22,12 @@ list(REMOVE_DUPLICATES proxygi_config_vtk_components)
 list(SORT proxygi_config_vtk_components)
 string(REPLACE ";" " " proxygi_config_vtk_components "${proxygi_config_vtk_components}")
 
-# Embree and OpenEXR are private to shared libraries, so a consumer needs
+# Embree, OpenEXR and Highway are private to shared libraries, so a consumer needs
 # them only when the libraries are static.
 set(proxygi_config_third_party "")
 if (NOT BUILD_SHARED_LIBS)
   set(proxygi_config_third_party
-    "find_dependency(embree 3)\nfind_dependency(OpenEXR 3)\n")
+    "find_dependency(embree 3)\nfind_dependency(OpenEXR 3)\nfind_dependency(hwy 1.0)\n")
 endif ()
 
 configure_package_config_file(

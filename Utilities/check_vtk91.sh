@@ -23,7 +23,7 @@ fi
 packages=(
   build-essential cmake ninja-build pkg-config file python3
   libvtk9-dev
-  libembree-dev libopenexr-dev libglm-dev libeigen3-dev
+  libembree-dev libopenexr-dev libglm-dev libeigen3-dev libhwy-dev
   libegl-dev libglew-dev libgl1-mesa-dri
   libgtest-dev libbenchmark-dev
 )

@@ -22,7 +22,7 @@ packages=(
   libopenmpi-dev libutfcpp-dev
   libembree-dev libopenexr-dev libglm-dev libeigen3-dev
   libegl-dev libglew-dev libosmesa6-dev libgl1-mesa-dri xvfb xauth
-  libgtest-dev libbenchmark-dev
+  libgtest-dev libbenchmark-dev libhwy-dev
 )
 
 want_packages=1

@@ -61,7 +61,10 @@ an option a mode has no use for as "note: ... does not apply".
   --exposure E        tone-mapping scale (default: 95th percentile to 0.8)
   --no-error          skip the reference and the error
   --vtp PREFIX        also write each object's per-vertex arrays to PREFIX-<name>.vtp
-  --mode M            gpu (default): per-vertex GI on the GPU (the GI mapper;
+  --mode M            auto (default): vertex where the GL renderer is a
+                      software one (llvmpipe, softpipe, swrast: there the CPU
+                      filter is the faster route and GL only draws), else gpu;
+                      gpu: per-vertex GI on the GPU (the GI mapper;
                       every leaf sphere, no hierarchy cuts);
                       vertex: per-vertex radiance from the CPU filter (with the
                       plan and the direct light's own error);

@@ -65,6 +65,7 @@ bool Given(const Args& args, const std::string& name)
 struct RenderOptions
 {
   std::string Mode = "gpu";
+  std::string AutoReason; // why --mode auto chose Mode
   int Order = 4, Spheres = 64, ReferenceSpp = 1024, ReceiverScale = 2, PixelSpp = 256;
   int ExpMethod = vtkPGIGISettings::EXP_HYB;
   std::string MethodName = "HYB", IndirectName = "shadowed";
@@ -80,7 +81,25 @@ struct RenderOptions
 bool ParseRenderOptions(const Args& args, RenderOptions& o)
 {
   bool ok = true;
-  o.Mode = Option(args, "--mode", "gpu");
+  o.Mode = Option(args, "--mode", "auto");
+  if (o.Mode == "auto")
+  {
+    // The fastest route: on a software rasteriser the CPU filter shades
+    // several times faster than the GI mapper runs there.
+    vtkSmartPointer<vtkRenderWindow> probe = NewOffscreenRenderWindow();
+    const std::string gl = probe ? DescribeRenderWindowContext(probe) : std::string();
+    std::string lower = gl;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+      [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const bool software = lower.find("llvmpipe") != std::string::npos ||
+      lower.find("softpipe") != std::string::npos || lower.find("swrast") != std::string::npos ||
+      lower.find("software") != std::string::npos;
+    o.Mode = software ? "vertex" : "gpu";
+    o.AutoReason = software
+      ? "the GL renderer (" + gl + ") is a software one: the CPU filter shades, GL only draws"
+      : "the GL renderer (" + (gl.empty() ? std::string("none found") : gl) +
+        ") is a hardware one: the GI mapper shades on the GPU";
+  }
   o.Order = static_cast<int>(NumberOption(args, "--order", 4, ok));
   o.Spheres = static_cast<int>(NumberOption(args, "--spheres", 64, ok));
   o.ReferenceSpp = static_cast<int>(NumberOption(args, "--reference-spp", 1024, ok));
@@ -310,6 +329,11 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     return 1;
   }
   std::printf("scene: %s\n", scene.Name.c_str());
+  if (!o.AutoReason.empty())
+  {
+    std::printf("mode: %s (auto: %s; --mode gpu|vertex|image-space to choose)\n", o.Mode.c_str(),
+      o.AutoReason.c_str());
+  }
 
   SceneProxies proxies;
   SetupProgress progress("proxygi render");

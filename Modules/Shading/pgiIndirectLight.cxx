@@ -154,10 +154,9 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   }
 }
 
-bool PlaneShadowScale(const SoftShadows& shadows, const EnvironmentShading& shading,
-  const Blockers& blockers, int plane, const float p[3], const float n[3], float scale[3])
+bool PlaneShadowPoint(
+  const Blockers& blockers, int plane, const float p[3], const float n[3], float q[3])
 {
-  scale[0] = scale[1] = scale[2] = 1.0f;
   const float* o = &blockers.PlaneOrigin[3 * plane];
   const float* m = &blockers.PlaneNormal[3 * plane];
   const float height = (p[0] - o[0]) * m[0] + (p[1] - o[1]) * m[1] + (p[2] - o[2]) * m[2];
@@ -174,19 +173,43 @@ bool PlaneShadowScale(const SoftShadows& shadows, const EnvironmentShading& shad
   }
   // Far along a grazing direction the plane point says little: at most 4 h.
   const float t = height / std::max(down, 0.25f);
-  const float q[3] = { p[0] + t * d[0] / len, p[1] + t * d[1] / len, p[2] + t * d[2] / len };
-  float g[sh::MaxCoefficients], lit[3], open[3];
-  sh::Status status;
-  if (shadows.Visibility(q, m, blockers, g, status) == 0 || status != sh::Status::Ok)
+  for (int k = 0; k < 3; ++k)
   {
-    return true;
+    q[k] = p[k] + t * d[k] / len;
   }
+  return true;
+}
+
+void PlaneShadowScaleAt(const EnvironmentShading& shading, const float m[3], const float* g,
+  int used, sh::Status status, float scale[3])
+{
+  scale[0] = scale[1] = scale[2] = 1.0f;
+  if (used == 0 || status != sh::Status::Ok)
+  {
+    return;
+  }
+  float lit[3], open[3];
   shading.Shade(m, g, lit);
   shading.ShadeUnshadowed(m, open);
   for (int c = 0; c < 3; ++c)
   {
     scale[c] = open[c] > 0.0f ? std::min(1.0f, std::max(0.0f, lit[c] / open[c])) : 1.0f;
   }
+}
+
+bool PlaneShadowScale(const SoftShadows& shadows, const EnvironmentShading& shading,
+  const Blockers& blockers, int plane, const float p[3], const float n[3], float scale[3])
+{
+  scale[0] = scale[1] = scale[2] = 1.0f;
+  float q[3], g[sh::MaxCoefficients];
+  if (!PlaneShadowPoint(blockers, plane, p, n, q))
+  {
+    return false;
+  }
+  sh::Status status;
+  const float* m = &blockers.PlaneNormal[3 * plane];
+  const int used = shadows.Visibility(q, m, blockers, g, status);
+  PlaneShadowScaleAt(shading, m, g, used, status, scale);
   return true;
 }
 

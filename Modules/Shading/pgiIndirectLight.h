@@ -82,6 +82,14 @@ PROXYGISHADING_EXPORT bool PlaneShadowScale(const SoftShadows& shadows,
   const EnvironmentShading& shading, const Blockers& blockers, int plane, const float p[3],
   const float n[3], float scale[3]);
 
+/// PlaneShadowScale in two steps, for batching the visibility at q: the
+/// plane point (false: the receiver does not see the plane, scale 1), and
+/// the scale from the visibility (g, used, status) at q.
+PROXYGISHADING_EXPORT bool PlaneShadowPoint(
+  const Blockers& blockers, int plane, const float p[3], const float n[3], float q[3]);
+PROXYGISHADING_EXPORT void PlaneShadowScaleAt(const EnvironmentShading& shading, const float m[3],
+  const float* g, int used, sh::Status status, float scale[3]);
+
 } // namespace proxygi
 
 #endif

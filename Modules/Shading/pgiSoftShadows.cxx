@@ -1,7 +1,9 @@
 #include "pgiSoftShadows.h"
 
+#include "pgiSHBatch.h"
 #include "pgiSHTables.h"
 #include "pgiSHZonal.h"
+#include "pgiSoftShadowsBatch.h"
 
 #include <algorithm>
 #include <cmath>
@@ -96,6 +98,67 @@ SoftShadows::SoftShadows(const SoftShadowSettings& settings)
   sh::CapTables::Get(this->AccOrder); // build before the parallel loops
 }
 
+namespace
+{
+// Calls visit(index, theta, dx, dy, dz, ratio) for every blocker receiver
+// (p, n) accumulates, in accumulation order: spheres after the rules, then
+// planes (index -1 - k; in log space only when inLog, else reported only
+// with ratio null and theta MaxAngle). The batched twin is BlockerLanesImpl.
+template <typename Visit>
+void VisitBlockers(const SoftShadowSettings& settings, bool ratios, const float p[3],
+  const float n[3], const Blockers& b, Visit&& visit)
+{
+  const float sinMin = std::sin(settings.MinAngle);
+  for (std::size_t s = 0; s < b.X.size(); ++s)
+  {
+    float c[3] = { b.X[s], b.Y[s], b.Z[s] };
+    float r = b.R[s];
+    if (!(r > 0.0f))
+    {
+      continue; // zero-radius (or NaN) spheres block nothing
+    }
+    if (settings.SelfShadowRules && !ReplaceBlocker(p, n, c, r))
+    {
+      continue;
+    }
+    const float dx = c[0] - p[0], dy = c[1] - p[1], dz = c[2] - p[2];
+    const float d = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(d > 0.0f) || r < sinMin * d)
+    {
+      continue;
+    }
+    const float theta = detail::BlockerAsin(std::min(1.0f, r / d));
+    visit(static_cast<int>(s), theta, dx / d, dy / d, dz / d,
+      ratios ? &b.Ratio[s * settings.Order] : nullptr, true);
+  }
+  for (std::size_t k = 0; k < b.Planes(); ++k)
+  {
+    const float* o = &b.PlaneOrigin[3 * k];
+    const float* pn = &b.PlaneNormal[3 * k];
+    const float height = (p[0] - o[0]) * pn[0] + (p[1] - o[1]) * pn[1] + (p[2] - o[2]) * pn[2];
+    // Seen from above, the plane hides the half-space below: a 90-degree cap,
+    // whatever the receiver's normal (no rule, so no jump as normals turn).
+    // Receivers on or under the plane do not see it.
+    if (!(height > 0.0f))
+    {
+      continue;
+    }
+    visit(-1 - static_cast<int>(k), static_cast<float>(sh::CapTables::MaxAngle), -pn[0], -pn[1],
+      -pn[2], nullptr, settings.PlanesInLogSpace);
+  }
+}
+} // namespace
+
+void SoftShadows::Seen(
+  const float p[3], const float n[3], const Blockers& b, std::vector<SeenBlocker>& seen) const
+{
+  seen.clear();
+  VisitBlockers(this->Settings, false, p, n, b,
+    [&](int index, float theta, float dx, float dy, float dz, const float*, bool) {
+      seen.push_back({ index, theta, { dx, dy, dz } });
+    });
+}
+
 int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& b, float* g,
   sh::Status& status, std::vector<SeenBlocker>* seen) const
 {
@@ -110,73 +173,31 @@ int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& 
   sh::Fill(f, a2, 0.0f);
   status = sh::Status::Ok;
   int used = 0;
-  const float sinMin = std::sin(this->Settings.MinAngle);
-  const bool ratios = !b.Ratio.empty();
-  auto accumulate = [&](float theta, float dx, float dy, float dz, const float* ratio)
-  {
-    tables.CapLog(theta, zh);
-    if (ratio)
+  VisitBlockers(this->Settings, !b.Ratio.empty() && acc == order, p, n, b,
+    [&](int index, float theta, float dx, float dy, float dz, const float* ratio, bool inLog)
     {
-      for (int l = 0; l < order; ++l)
+      if (inLog)
       {
-        zh[l] *= ratio[l];
+        tables.CapLog(theta, zh);
+        if (ratio)
+        {
+          for (int l = 0; l < order; ++l)
+          {
+            zh[l] *= ratio[l];
+          }
+        }
+        sh::RotateScaledZonal(acc, zh, dx, dy, dz, v);
+        for (int i = 0; i < a2; ++i)
+        {
+          f[i] += v[i];
+        }
+        ++used;
       }
-    }
-    sh::RotateScaledZonal(acc, zh, dx, dy, dz, v);
-    for (int i = 0; i < a2; ++i)
-    {
-      f[i] += v[i];
-    }
-    ++used;
-  };
-  for (std::size_t s = 0; s < b.X.size(); ++s)
-  {
-    float c[3] = { b.X[s], b.Y[s], b.Z[s] };
-    float r = b.R[s];
-    if (!(r > 0.0f))
-    {
-      continue; // zero-radius (or NaN) spheres block nothing
-    }
-    if (this->Settings.SelfShadowRules && !ReplaceBlocker(p, n, c, r))
-    {
-      continue;
-    }
-    const float dx = c[0] - p[0], dy = c[1] - p[1], dz = c[2] - p[2];
-    const float d = std::sqrt(dx * dx + dy * dy + dz * dz);
-    if (!(d > 0.0f) || r < sinMin * d)
-    {
-      continue;
-    }
-    const float theta = std::asin(std::min(1.0f, r / d));
-    accumulate(
-      theta, dx / d, dy / d, dz / d, ratios && acc == order ? &b.Ratio[s * order] : nullptr);
-    if (seen)
-    {
-      seen->push_back({ static_cast<int>(s), theta, { dx / d, dy / d, dz / d } });
-    }
-  }
-  for (std::size_t k = 0; k < b.Planes(); ++k)
-  {
-    const float* o = &b.PlaneOrigin[3 * k];
-    const float* pn = &b.PlaneNormal[3 * k];
-    const float height = (p[0] - o[0]) * pn[0] + (p[1] - o[1]) * pn[1] + (p[2] - o[2]) * pn[2];
-    // Seen from above, the plane hides the half-space below: a 90-degree cap,
-    // whatever the receiver's normal (no rule, so no jump as normals turn).
-    // Receivers on or under the plane do not see it.
-    if (!(height > 0.0f))
-    {
-      continue;
-    }
-    if (this->Settings.PlanesInLogSpace)
-    {
-      accumulate(static_cast<float>(sh::CapTables::MaxAngle), -pn[0], -pn[1], -pn[2], nullptr);
-    }
-    if (seen)
-    {
-      seen->push_back({ -1 - static_cast<int>(k), static_cast<float>(sh::CapTables::MaxAngle),
-        { -pn[0], -pn[1], -pn[2] } });
-    }
-  }
+      if (seen)
+      {
+        seen->push_back({ index, theta, { dx, dy, dz } });
+      }
+    });
   if (used == 0)
   {
     sh::SetConstant(order, 1.0f, g);
@@ -185,11 +206,118 @@ int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& 
   float full[sh::MaxCoefficients];
   status = sh::Exp(acc, f, full, this->Settings.Exp);
   std::copy(full, full + n2, g); // truncation to the output order
+  this->Finish(g);
+  return used;
+}
+
+void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, const Blockers& b,
+  float* g, sh::Status* status, int* used) const
+{
+  const int order = this->Settings.Order, acc = this->AccOrder;
+  const int n2 = sh::NumCoefficients(order), a2 = sh::NumCoefficients(acc);
+  if (!sh::BatchKernelsEnabled() || acc > 6)
+  {
+    for (int i = 0; i < count; ++i)
+    {
+      used[i] = this->Visibility(&p[3 * i], &n[3 * i], b, &g[i * n2], status[i]);
+    }
+    return;
+  }
+  constexpr int W = sh::BatchWidth;
+  constexpr int Rows = 32; // blockers per pass: the rows stay on the stack
+  const sh::CapTables& tables = sh::CapTables::Get(acc);
+  const bool ratios = !b.Ratio.empty() && acc == order;
+  const float sinMin = std::sin(this->Settings.MinAngle);
+  const int spheres = static_cast<int>(b.Spheres()), planes = static_cast<int>(b.Planes());
+  alignas(64) float lanes[6 * W], theta[Rows * W], dx[Rows * W], dy[Rows * W], dz[Rows * W];
+  alignas(64) float f[sh::MaxCoefficients * W], e[sh::MaxCoefficients * W];
+  int laneUsed[W];
+  sh::Status laneStatus[W];
+  auto countUsed = [&](int rows)
+  {
+    for (int r = 0; r < rows; ++r)
+    {
+      for (int k = 0; k < W; ++k)
+      {
+        laneUsed[k] += theta[r * W + k] >= 0.0f ? 1 : 0;
+      }
+    }
+  };
+  for (int first = 0; first < count; first += W)
+  {
+    const int m = std::min(W, count - first);
+    for (int k = 0; k < W; ++k)
+    {
+      const int i = first + std::min(k, m - 1); // spare lanes repeat the last receiver
+      for (int c = 0; c < 3; ++c)
+      {
+        lanes[c * W + k] = p[3 * i + c];
+        lanes[(3 + c) * W + k] = n[3 * i + c];
+      }
+      laneUsed[k] = 0;
+    }
+    std::fill(f, f + a2 * W, 0.0f);
+    for (int s0 = 0; s0 < spheres; s0 += Rows)
+    {
+      const int rows = std::min(Rows, spheres - s0);
+      detail::BlockerLanes(lanes, &b.X[s0], &b.Y[s0], &b.Z[s0], &b.R[s0], rows, sinMin,
+        this->Settings.SelfShadowRules, theta, dx, dy, dz);
+      countUsed(rows);
+      sh::BatchAddCaps(
+        tables, acc, rows, theta, dx, dy, dz, ratios ? &b.Ratio[s0 * order] : nullptr, f);
+    }
+    for (int k0 = 0; this->Settings.PlanesInLogSpace && k0 < planes; k0 += Rows)
+    {
+      const int rows = std::min(Rows, planes - k0);
+      for (int r = 0; r < rows; ++r)
+      {
+        const float* o = &b.PlaneOrigin[3 * (k0 + r)];
+        const float* pn = &b.PlaneNormal[3 * (k0 + r)];
+        for (int k = 0; k < W; ++k)
+        {
+          const float height = (lanes[k] - o[0]) * pn[0] + (lanes[W + k] - o[1]) * pn[1] +
+            (lanes[2 * W + k] - o[2]) * pn[2];
+          theta[r * W + k] = height > 0.0f ? static_cast<float>(sh::CapTables::MaxAngle) : -1.0f;
+          dx[r * W + k] = -pn[0];
+          dy[r * W + k] = -pn[1];
+          dz[r * W + k] = -pn[2];
+        }
+      }
+      countUsed(rows);
+      sh::BatchAddCaps(tables, acc, rows, theta, dx, dy, dz, nullptr, f);
+    }
+    if (std::any_of(laneUsed, laneUsed + W, [](int u) { return u > 0; }))
+    {
+      sh::BatchExp(acc, f, e, this->Settings.Exp, laneStatus);
+    }
+    for (int k = 0; k < m; ++k)
+    {
+      const int i = first + k;
+      float* out = &g[i * n2];
+      used[i] = laneUsed[k];
+      status[i] = sh::Status::Ok;
+      if (laneUsed[k] == 0)
+      {
+        sh::SetConstant(order, 1.0f, out);
+        continue;
+      }
+      for (int j = 0; j < n2; ++j)
+      {
+        out[j] = e[j * W + k];
+      }
+      status[i] = laneStatus[k];
+      this->Finish(out);
+    }
+  }
+}
+
+void SoftShadows::Finish(float* g) const
+{
   if (this->Settings.WindowH != 0.0)
   {
-    sh::Window(order, g, this->Settings.WindowH < 0.0 ? 0.0 : this->Settings.WindowH);
+    sh::Window(
+      this->Settings.Order, g, this->Settings.WindowH < 0.0 ? 0.0 : this->Settings.WindowH);
   }
-  return used;
 }
 
 bool ProxyHierarchy::Finish()

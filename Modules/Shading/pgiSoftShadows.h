@@ -127,7 +127,25 @@ public:
   int Visibility(const float p[3], const float n[3], const Blockers& blockers, float* g,
     sh::Status& status, std::vector<SeenBlocker>* seen = nullptr) const;
 
+  /**
+   * Visibility of `count` receivers against the same blockers: points p and
+   * unit normals n (3 floats each), g (count rows of Order^2), status and
+   * used (count each) as Visibility gives them. Runs sh::BatchWidth
+   * receivers at once through the batched kernels (pgiSHBatch.h) where they
+   * are enabled and the accumulation order is at most 6; receivers one at a
+   * time otherwise. Allocates nothing.
+   */
+  void VisibilityBatch(int count, const float* p, const float* n, const Blockers& blockers,
+    float* g, sh::Status* status, int* used) const;
+
+  /// The blockers receiver (p, n) sees after the rules, as Visibility lists them.
+  void Seen(const float p[3], const float n[3], const Blockers& blockers,
+    std::vector<SeenBlocker>& seen) const;
+
 private:
+  /// The window, applied to a visibility vector of the output order.
+  void Finish(float* g) const;
+
   SoftShadowSettings Settings;
   int AccOrder;
 };

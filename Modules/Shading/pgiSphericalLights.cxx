@@ -1,5 +1,7 @@
 #include "pgiSphericalLights.h"
 
+#include "pgiSHBatch.h"
+
 #include "pgiEnvironmentShading.h"
 #include "pgiMaterial.h"
 #include "pgiSHLightTables.h"
@@ -269,38 +271,35 @@ bool ShadowedIndirect::ExitRadiance(const SphericalLights& lights, bool emitLigh
   }
   float h[sh::MaxCoefficients];
   sh::DiffuseTransfer(order, n[0], n[1], n[2], h);
-  float before[sh::MaxCoefficients], after[sh::MaxCoefficients], expBefore[sh::MaxCoefficients],
-    expAfter[sh::MaxCoefficients];
+  float before[sh::MaxCoefficients], after[sh::MaxCoefficients];
   bool ok = true;
   // exp per blocker set (a bit per sorted entry; the planes are in every
   // set): a set met again, such as the previous light's F + G, or F of a light
   // whose intersecting partner came just before it, costs no second exp.
+  // First every light's sets, then their exps in batches, then the sums.
   const bool cache = entries <= 64;
-  s.CacheKey.clear();
-  s.CacheExp.clear();
+  s.Sets.clear();
+  s.SetKey.clear();
+  s.SetCacheable.clear();
+  s.Jobs.clear();
   std::uint64_t runningMask = 0;
-  auto expOf = [&](const float* f, std::uint64_t key, float* out)
+  auto setOf = [&](const float* f, std::uint64_t key, bool cacheable)
   {
     if (key == 0 && !planeLogs)
     {
-      sh::SetConstant(order, 1.0f, out); // nothing blocks: exactly 1
-      return sh::Status::Ok;
+      return -1; // nothing blocks: exactly 1
     }
-    for (std::size_t c = 0; cache && c < s.CacheKey.size(); ++c)
+    for (std::size_t c = 0; cacheable && c < s.SetKey.size(); ++c)
     {
-      if (s.CacheKey[c] == key)
+      if (s.SetCacheable[c] && s.SetKey[c] == key)
       {
-        std::copy(&s.CacheExp[c * n2], &s.CacheExp[c * n2] + n2, out);
-        return sh::Status::Ok;
+        return static_cast<int>(c);
       }
     }
-    const sh::Status status = sh::Exp(order, f, out, this->Settings.Exp);
-    if (cache && status == sh::Status::Ok)
-    {
-      s.CacheKey.push_back(key);
-      s.CacheExp.insert(s.CacheExp.end(), out, out + n2);
-    }
-    return status;
+    s.Sets.insert(s.Sets.end(), f, f + n2);
+    s.SetKey.push_back(key);
+    s.SetCacheable.push_back(cacheable ? 1 : 0);
+    return static_cast<int>(s.SetKey.size()) - 1;
   };
   for (std::size_t k = 0; k < entries; ++k)
   {
@@ -319,7 +318,8 @@ bool ShadowedIndirect::ExitRadiance(const SphericalLights& lights, bool emitLigh
         }
       }
     }
-    float lbar[3] = { 0, 0, 0 };
+    SphericalLightScratch::Job job{ -1, -1, static_cast<int>(k), { 0, 0, 0 } };
+    float* lbar = job.Lbar;
     if (blocks && emitLights)
     {
       const float* radiance = &lights.Radiance[static_cast<std::size_t>(e.Index) * 3 * n2];
@@ -364,35 +364,10 @@ bool ShadowedIndirect::ExitRadiance(const SphericalLights& lights, bool emitLigh
       }
       const std::uint64_t afterMask =
         blocks && cache ? beforeMask | (std::uint64_t(1) << k) : ~std::uint64_t(0);
-      sh::Status status = expOf(before, cache ? beforeMask : ~std::uint64_t(0), expBefore);
-      if (status == sh::Status::Ok)
-      {
-        // A light that does not block has no set of its own: no caching.
-        status = blocks && cache ? expOf(after, afterMask, expAfter)
-                                 : sh::Exp(order, after, expAfter, this->Settings.Exp);
-      }
-      if (status == sh::Status::Ok)
-      {
-        float v[sh::MaxCoefficients];
-        for (int t = 0; t < n2; ++t)
-        {
-          v[t] = expBefore[t] - expAfter[t];
-        }
-        const float vbar = std::max(0.0f, sh::Dot(n2, h, v));
-        for (int c = 0; c < 3; ++c)
-        {
-          const float share = std::max(0.0f, lbar[c]) * vbar;
-          rgb[c] += share;
-          if (contributions && blocks)
-          {
-            contributions[e.Index] += share;
-          }
-        }
-      }
-      else
-      {
-        ok = false;
-      }
+      job.Before = setOf(before, cache ? beforeMask : ~std::uint64_t(0), cache);
+      // A light that does not block has no set of its own: no caching.
+      job.After = setOf(after, afterMask, blocks && cache);
+      s.Jobs.push_back(job);
     }
     if (blocks)
     {
@@ -400,6 +375,65 @@ bool ShadowedIndirect::ExitRadiance(const SphericalLights& lights, bool emitLigh
       for (int t = 0; t < n2; ++t)
       {
         running[t] += s.Logs[k * n2 + t];
+      }
+    }
+  }
+  // The exps, sh::BatchWidth sets at a time.
+  constexpr int W = sh::BatchWidth;
+  const int sets = static_cast<int>(s.SetKey.size());
+  s.SetExp.resize(static_cast<std::size_t>(sets) * n2);
+  s.SetStatus.resize(sets);
+  alignas(64) float lanes[sh::MaxCoefficients * W], exps[sh::MaxCoefficients * W];
+  sh::Status status[W];
+  for (int first = 0; first < sets; first += W)
+  {
+    const int m = std::min(W, sets - first);
+    for (int q = 0; q < W; ++q)
+    {
+      const float* f = &s.Sets[static_cast<std::size_t>(first + std::min(q, m - 1)) * n2];
+      for (int t = 0; t < n2; ++t)
+      {
+        lanes[t * W + q] = f[t];
+      }
+    }
+    sh::BatchExp(order, lanes, exps, this->Settings.Exp, status);
+    for (int q = 0; q < m; ++q)
+    {
+      for (int t = 0; t < n2; ++t)
+      {
+        s.SetExp[static_cast<std::size_t>(first + q) * n2 + t] = exps[t * W + q];
+      }
+      s.SetStatus[first + q] = static_cast<int>(status[q]);
+    }
+  }
+  float one[sh::MaxCoefficients];
+  sh::SetConstant(order, 1.0f, one);
+  const auto expAt = [&](int set) { return set < 0 ? one : &s.SetExp[std::size_t(set) * n2]; };
+  const auto okAt = [&](int set)
+  { return set < 0 || s.SetStatus[set] == static_cast<int>(sh::Status::Ok); };
+  for (const SphericalLightScratch::Job& job : s.Jobs)
+  {
+    if (!okAt(job.Before) || !okAt(job.After))
+    {
+      ok = false;
+      continue;
+    }
+    const float* expBefore = expAt(job.Before);
+    const float* expAfter = expAt(job.After);
+    float v[sh::MaxCoefficients];
+    for (int t = 0; t < n2; ++t)
+    {
+      v[t] = expBefore[t] - expAfter[t];
+    }
+    const float vbar = std::max(0.0f, sh::Dot(n2, h, v));
+    const Seen& e = s.List[job.Entry];
+    for (int c = 0; c < 3; ++c)
+    {
+      const float share = std::max(0.0f, job.Lbar[c]) * vbar;
+      rgb[c] += share;
+      if (contributions && e.Index >= 0)
+      {
+        contributions[e.Index] += share;
       }
     }
   }

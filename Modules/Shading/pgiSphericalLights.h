@@ -124,8 +124,20 @@ struct SphericalLightScratch
   std::vector<std::size_t> Rank;
   std::vector<float> Logs; // Order^2 per entry of List
   std::vector<int> Excluded;
-  std::vector<std::uint64_t> CacheKey; // blocker sets whose exp is in CacheExp
-  std::vector<float> CacheExp;
+  // The distinct blocker sets the lights need the exp of (Order^2 each), their
+  // keys (a bit per sorted entry; cacheable ones are looked up), their exps
+  // and statuses; per emitting light, the sets before and after it.
+  std::vector<float> Sets, SetExp;
+  std::vector<std::uint64_t> SetKey;
+  std::vector<char> SetCacheable;
+  std::vector<int> SetStatus;
+  struct Job
+  {
+    int Before, After; // set indices, -1: exactly 1 (nothing blocks)
+    int Entry;
+    float Lbar[3];
+  };
+  std::vector<Job> Jobs;
 };
 
 class PROXYGISHADING_EXPORT ShadowedIndirect

@@ -7,6 +7,7 @@
 #include "vtkPGILighting.h"
 
 #include "vtkDataArray.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -117,11 +118,16 @@ bool vtkPGIGIBake::Update()
   }
   this->Error.clear();
   this->ProxyError.clear();
+  proxygi::BakedScene previous = std::move(this->Scene);
   this->Scene = proxygi::BakedScene();
   this->Scene.Order = this->Settings->GetOrder();
-  vtkNew<vtkPGILighting> defaultLighting;
-  vtkPGILighting* lighting = this->Lighting ? this->Lighting : defaultLighting.Get();
-  bool ok = this->ReadBlockers() && this->ProjectLight(lighting);
+  // Without a lighting: one default kept across builds, so its projection is too.
+  if (!this->Lighting && !this->DefaultLighting)
+  {
+    this->DefaultLighting = vtkSmartPointer<vtkPGILighting>::New();
+  }
+  vtkPGILighting* lighting = this->Lighting ? this->Lighting : this->DefaultLighting.Get();
+  bool ok = this->ReadBlockers() && this->ProjectLight(lighting, previous);
   if (ok)
   {
     this->PlanEffects(lighting);
@@ -250,7 +256,7 @@ bool vtkPGIGIBake::ReadBlockers()
   return true;
 }
 
-bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting)
+bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting, proxygi::BakedScene& previous)
 {
   proxygi::BakedScene& b = this->Scene;
   const proxygi::EnvironmentMap* environment = nullptr;
@@ -258,8 +264,48 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting)
   if (!lighting->GetEnvironment(environment, error))
   {
     this->Error = "Bad environment: " + error;
+    this->LastLight = LightKey();
     return false;
   }
+  const int order = b.Order;
+  LightKey key;
+  key.Environment = environment;
+  key.Time = lighting->GetMTime();
+  if (lighting->GetEnvironmentImage())
+  {
+    key.Time = std::max(key.Time, lighting->GetEnvironmentImage()->GetMTime());
+  }
+  key.Order = order;
+  key.Path = this->Settings->GetShadingPath();
+  key.PlaneBlocking = this->Settings->GetPlaneBlocking();
+  key.Planes = this->Planes;
+  if (key == this->LastLight && previous.Shading)
+  {
+    // Only the proxies or the kernel's knobs changed: the light stands.
+    b.Light = std::move(previous.Light);
+    b.OpenShading = std::move(previous.OpenShading);
+    b.PlanesInLight = previous.PlanesInLight;
+    b.LightAbovePlanes = std::move(previous.LightAbovePlanes);
+    b.PlaneVisibility = std::move(previous.PlaneVisibility);
+    b.Shading = std::move(previous.Shading);
+    b.Secondary = std::move(previous.Secondary);
+    b.InterleavedResponse = std::move(previous.InterleavedResponse);
+    b.Dark = previous.Dark;
+  }
+  else
+  {
+    this->ProjectEnvironment(*environment);
+    this->LastLight = key;
+    ++this->NumberOfLightProjections;
+  }
+  this->SetKernel();
+  return true;
+}
+
+void vtkPGIGIBake::ProjectEnvironment(const proxygi::EnvironmentMap& map)
+{
+  proxygi::BakedScene& b = this->Scene;
+  const proxygi::EnvironmentMap* environment = &map;
   const int order = b.Order, n2 = order * order;
   b.Light.assign(3 * static_cast<std::size_t>(n2), 0.0);
   environment->ProjectSH(order, &b.Light[0], &b.Light[n2], &b.Light[2 * n2]);
@@ -294,10 +340,14 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting)
     }
   }
   b.Dark = above[0] <= 0.0 && above[n2] <= 0.0 && above[2 * n2] <= 0.0;
+}
 
+void vtkPGIGIBake::SetKernel()
+{
+  proxygi::BakedScene& b = this->Scene;
   proxygi::SoftShadowSettings& k = b.Kernel;
   vtkPGIGISettings* s = this->Settings;
-  k.Order = order;
+  k.Order = b.Order;
   k.AccumulationOrder = s->GetAccumulationOrder();
   k.Exp.Method = static_cast<proxygi::sh::ExpMethod>(s->GetExpMethod());
   k.Exp.Degree = s->GetExpDegree();
@@ -308,7 +358,6 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting)
   k.MinAngle = static_cast<float>(s->GetMinBlockerAngle());
   k.SelfShadowRules = s->GetSelfShadowRules();
   k.PlanesInLogSpace = !b.PlanesInLight;
-  return true;
 }
 
 void vtkPGIGIBake::PlanEffects(vtkPGILighting* lighting)
@@ -477,5 +526,6 @@ void vtkPGIGIBake::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Settings: " << this->Settings << "\n";
   os << indent << "BlockerPlanes: " << this->GetNumberOfBlockerPlanes() << "\n";
   os << indent << "NumberOfBuilds: " << this->NumberOfBuilds << "\n";
+  os << indent << "NumberOfLightProjections: " << this->NumberOfLightProjections << "\n";
   os << indent << "Error: " << (this->Error.empty() ? "(none)" : this->Error) << "\n";
 }

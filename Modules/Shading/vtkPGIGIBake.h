@@ -16,7 +16,9 @@
  *
  * The stages of a build, in order: ReadBlockers (leaf proxies with albedo,
  * the hierarchy when HierarchyAngle asks, the planes), ProjectLight (the
- * environment in SH, LightAbovePlanes when the planes ride in the light),
+ * environment in SH, LightAbovePlanes when the planes ride in the light;
+ * reused from the last build when only the proxies or the kernel's knobs
+ * changed, see GetNumberOfLightProjections),
  * PlanEffects (what the scene needs, one plan line per decision),
  * PrepareLocalLights, PrepareSphericalLights (the shadowed bounce's first
  * pass).
@@ -45,6 +47,7 @@ class vtkPolyData;
 
 namespace proxygi
 {
+class EnvironmentMap;
 /// What a bake computed (read-only for the consumers).
 struct PROXYGISHADING_EXPORT BakedScene
 {
@@ -148,13 +151,17 @@ public:
   vtkGetMacro(NumberOfBuilds, int);
   /// When the last build finished (consumers compare it to re-upload).
   vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
+  /// How many builds projected the environment (the others reused it).
+  vtkGetMacro(NumberOfLightProjections, int);
 
 protected:
   vtkPGIGIBake();
   ~vtkPGIGIBake() override;
 
   bool ReadBlockers();
-  bool ProjectLight(vtkPGILighting* lighting);
+  bool ProjectLight(vtkPGILighting* lighting, proxygi::BakedScene& previous);
+  void ProjectEnvironment(const proxygi::EnvironmentMap& environment);
+  void SetKernel();
   void PlanEffects(vtkPGILighting* lighting);
   void PrepareLocalLights(vtkPGILighting* lighting);
   bool PrepareSphericalLights();
@@ -170,6 +177,23 @@ protected:
   vtkPolyData* BuiltProxies = nullptr;
   vtkPGILighting* BuiltLighting = nullptr;
   bool BuiltOk = false;
+  // What the last projection of the light depended on: the environment, its
+  // time, the order, the shading path and the planes.
+  struct LightKey
+  {
+    const void* Environment = nullptr;
+    vtkMTimeType Time = 0;
+    int Order = 0, Path = -1, PlaneBlocking = -1;
+    std::vector<double> Planes;
+    bool operator==(const LightKey& o) const
+    {
+      return this->Environment == o.Environment && this->Time == o.Time && this->Order == o.Order &&
+        this->Path == o.Path && this->PlaneBlocking == o.PlaneBlocking && this->Planes == o.Planes;
+    }
+  };
+  LightKey LastLight;
+  vtkSmartPointer<vtkPGILighting> DefaultLighting;
+  int NumberOfLightProjections = 0;
 
 private:
   vtkPGIGIBake(const vtkPGIGIBake&) = delete;

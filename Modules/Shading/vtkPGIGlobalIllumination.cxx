@@ -5,6 +5,7 @@
 #include "pgiIndirectLight.h"
 #include "pgiMaterial.h"
 #include "pgiParallel.h"
+#include "pgiSHBatch.h"
 #include "pgiSHLightTables.h"
 #include "pgiSHSphericalLight.h"
 #include "pgiSHZonal.h"
@@ -27,6 +28,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
@@ -115,14 +117,61 @@ vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Lighting, vtkPGILighting);
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Controller, vtkMultiProcessController);
 
 // Receiver clusters and their hierarchy cuts (one blocker list each).
+namespace
+{
+struct ClusterFrames
+{
+  std::vector<int> Of;
+  std::vector<std::array<double, 3>> Centres, At, Facing;
+  std::vector<double> Radius;
+  std::string How;
+};
+
+// What a clustering depended on: reused while the receivers stand still.
+struct ClusterKey
+{
+  const void* Receivers = nullptr;
+  vtkMTimeType Time = 0;
+  vtkIdType Count = -1;
+  int PerCluster = 0;
+  bool Distributed = false;
+  bool operator==(const ClusterKey& o) const
+  {
+    return this->Receivers == o.Receivers && this->Time == o.Time && this->Count == o.Count &&
+      this->PerCluster == o.PerCluster && this->Distributed == o.Distributed;
+  }
+};
+} // namespace
+
+// One thread's buffers for shading a range of receivers.
+struct ShadeScratch
+{
+  std::vector<proxygi::SeenBlocker> Seen;
+  proxygi::SphericalLightScratch Lights;
+  std::vector<float> Points, Facing, BatchPoints, BatchFacing, Visibilities, BatchVisibilities,
+    PlaneScales;
+  std::vector<proxygi::sh::Status> Statuses, BatchStatuses;
+  std::vector<int> Used, BatchUsed;
+  std::vector<vtkIdType> ByBlockers, Who;
+  std::vector<long long> Key;
+};
+
+struct vtkPGIGlobalIllumination::ShadeBuffers
+{
+  vtkSMPThreadLocal<ShadeScratch> PerThread;
+};
+
 struct vtkPGIGlobalIllumination::Clusters
 {
   std::vector<int> Of;
   std::vector<proxygi::Blockers> Blockers;
   std::vector<proxygi::SphericalLights> Lights;
+  ClusterFrames Frames;
+  ClusterKey Key;
 };
 
 vtkPGIGlobalIllumination::vtkPGIGlobalIllumination()
+  : Scratch(new ShadeBuffers)
 {
   this->SetNumberOfInputPorts(2);
   this->Settings = vtkPGIGISettings::New();
@@ -264,14 +313,6 @@ namespace
 // What each receiver cluster's hierarchy cut is made from: bounding sphere
 // (centre, radius; negative: an empty cluster, no cut) and the receiver
 // position and normal the cut's ratios are fitted at.
-struct ClusterFrames
-{
-  std::vector<int> Of;
-  std::vector<std::array<double, 3>> Centres, At, Facing;
-  std::vector<double> Radius;
-  std::string How;
-};
-
 // Under MPI the clusters must not depend on the partition, or a point
 // on a partition boundary would get another cut, hence a seam, on each
 // rank: cells of a grid over all ranks' receivers (the cell size a
@@ -424,7 +465,9 @@ ClusterFrames LloydFrames(
 bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataArray* normals)
 {
   Clusters& cl = *this->ReceiverClusters;
-  cl = Clusters();
+  cl.Of.clear();
+  cl.Blockers.clear();
+  cl.Lights.clear();
   const proxygi::BakedScene& b = this->Bake->GetScene();
   if (!b.NeedVisibility || !b.UseHierarchy)
   {
@@ -433,18 +476,32 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
   vtkMultiProcessController* controller = proxygi::parallel::Active(this->Controller);
   const vtkIdType n = receivers ? receivers->GetNumberOfPoints() : 0;
   const int perCluster = this->Effective->GetReceiversPerCluster();
-  std::vector<double> points(3 * static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
+  // Clusters depend on the receivers only: when just the proxies or the
+  // light changed, the last ones stand and only the cuts are taken again.
+  ClusterKey key;
+  key.Receivers = receivers;
+  key.Time = receivers ? std::max(receivers->GetMTime(), normals ? normals->GetMTime() : 0) : 0;
+  key.Count = n;
+  key.PerCluster = perCluster;
+  key.Distributed = controller != nullptr;
+  const bool reuse = !controller && key == cl.Key; // collective under MPI: always
+  if (!reuse)
   {
-    receivers->GetPoint(i, &points[3 * i]);
+    std::vector<double> points(3 * static_cast<std::size_t>(n));
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      receivers->GetPoint(i, &points[3 * i]);
+    }
+    cl.Frames = controller ? GridClusters(controller, receivers, points, n, normals, perCluster)
+                           : LloydFrames(points, n, normals, perCluster);
+    cl.Key = key;
   }
-  ClusterFrames f = controller ? GridClusters(controller, receivers, points, n, normals, perCluster)
-                               : LloydFrames(points, n, normals, perCluster);
+  const ClusterFrames& f = cl.Frames;
   if (f.Centres.empty())
   {
     return true;
   }
-  cl.Of = std::move(f.Of);
+  cl.Of = f.Of;
   const int clusters = static_cast<int>(f.Centres.size());
   const proxygi::ShadowedIndirect shadowedIndirect(b.Kernel,
     this->Effective->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT
@@ -485,7 +542,8 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
   std::ostringstream line;
   line << "hierarchy: " << used << " receiver clusters, cuts of "
        << (used ? static_cast<double>(cutTotal) / used : 0.0) << " spheres on average (of "
-       << b.SceneBlockers.Spheres() << " leaves) at " << angle << " degrees (" << f.How << ")"
+       << b.SceneBlockers.Spheres() << " leaves) at " << angle << " degrees (" << f.How
+       << (reuse ? ", reused: the receivers did not change" : "") << ")"
        << (b.RunShadowed ? "; spherical lights cut alike, with reflection ratios" : "");
   this->Plan.push_back(line.str());
   return true;
@@ -527,25 +585,31 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   logSettings.PlanesInLogSpace = true;
   const proxygi::SoftShadows shadowsLog(logSettings);
 
-  vtkNew<vtkFloatArray> direct, indirect, indirectShadowed, local, total, visibility;
-  direct->SetName("DirectShadowed");
-  indirect->SetName("IndirectProxy");
-  indirectShadowed->SetName("IndirectShadowed");
-  local->SetName("LocalLights");
-  total->SetName("Radiance");
-  visibility->SetName("Visibility");
-  for (vtkFloatArray* a :
-    { direct.Get(), indirect.Get(), indirectShadowed.Get(), local.Get(), total.Get() })
+  // Last update's arrays when nobody else holds them: a repeated update
+  // (proxies moving) allocates, and faults in, no new memory.
+  const auto reuse = [n](vtkSmartPointer<vtkFloatArray>& slot, const char* name, int components)
   {
-    a->SetNumberOfComponents(3);
-    a->SetNumberOfTuples(n);
-  }
-  visibility->SetNumberOfComponents(n2);
-  visibility->SetNumberOfTuples(n);
+    if (!slot || slot->GetReferenceCount() > 1)
+    {
+      slot = vtkSmartPointer<vtkFloatArray>::New();
+    }
+    slot->SetName(name);
+    slot->SetNumberOfComponents(components);
+    slot->SetNumberOfTuples(n);
+    return slot.Get();
+  };
+  vtkFloatArray* direct = reuse(this->OutputArrays[0], "DirectShadowed", 3);
+  vtkFloatArray* indirect = reuse(this->OutputArrays[1], "IndirectProxy", 3);
+  vtkFloatArray* indirectShadowed = reuse(this->OutputArrays[2], "IndirectShadowed", 3);
+  vtkFloatArray* local = reuse(this->OutputArrays[3], "LocalLights", 3);
+  vtkFloatArray* total = reuse(this->OutputArrays[4], "Radiance", 3);
+  vtkFloatArray* visibility = reuse(this->OutputArrays[5], "Visibility", n2);
 
   std::atomic<vtkIdType> shadowed(0), failures(0), shadowedFailures(0);
-  std::atomic<long long> secondPassNs(0);
-  const vtkIdType blocks = std::min<vtkIdType>(50, n);
+  std::atomic<long long> secondPassNs(0), visibilityNs(0);
+  // Progress and abort between blocks; a block of at least 4096 receivers
+  // keeps the fork-join of each block small beside its work.
+  const vtkIdType blocks = std::max<vtkIdType>(1, std::min<vtkIdType>(50, n / 4096));
   for (vtkIdType block = 0; block < blocks && !this->GetAbortExecute(); ++block)
   {
     vtkSMPTools::For(n * block / blocks, n * (block + 1) / blocks,
@@ -553,36 +617,160 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
       {
         float g[proxygi::sh::MaxCoefficients], unshadowed[proxygi::sh::MaxCoefficients];
         proxygi::sh::SetConstant(order, 1.0f, unshadowed);
-        std::vector<proxygi::SeenBlocker> seen;
-        proxygi::SphericalLightScratch scratch;
+        // This thread's buffers, kept from range to range and update to update.
+        ShadeScratch& buffers = this->Scratch->PerThread.Local();
+        std::vector<proxygi::SeenBlocker>& seen = buffers.Seen;
+        proxygi::SphericalLightScratch& scratch = buffers.Lights;
         vtkIdType localShadowed = 0, localFailures = 0, localShadowedFailures = 0;
         long long localSecondPassNs = 0;
+        // The visibility of the whole range first, in batches of receivers
+        // that share their blockers (cluster) and kernel (planes in the light
+        // or in log space), so the batched kernels run full lanes.
+        const vtkIdType count = last - first;
+        std::vector<float>&points = buffers.Points, &facing = buffers.Facing,
+        &batchPoints = buffers.BatchPoints, &batchFacing = buffers.BatchFacing,
+        &visibilities = buffers.Visibilities, &batchVisibilities = buffers.BatchVisibilities,
+        &planeScales = buffers.PlaneScales;
+        std::vector<proxygi::sh::Status>&statuses = buffers.Statuses,
+        &batchStatuses = buffers.BatchStatuses;
+        std::vector<int>&used = buffers.Used, &batchUsed = buffers.BatchUsed;
+        std::vector<vtkIdType>&byBlockers = buffers.ByBlockers, &who = buffers.Who;
+        std::vector<long long>& key = buffers.Key;
+        points.resize(3 * count);
+        facing.resize(3 * count);
+        statuses.resize(count);
+        used.resize(count);
+        byBlockers.resize(count);
+        key.resize(count);
+        for (vtkIdType j = 0; j < count; ++j)
+        {
+          double pd[3], nd[3];
+          receivers->GetPoint(first + j, pd);
+          UnitNormal(normals, first + j, nd);
+          for (int c = 0; c < 3; ++c)
+          {
+            points[3 * j + c] = static_cast<float>(pd[c]);
+            facing[3 * j + c] = static_cast<float>(nd[c]);
+          }
+          const bool carries = planesInLight && blockers.AboveEveryPlane(&points[3 * j]);
+          key[j] = 2 * (cl.Of.empty() ? 0LL : static_cast<long long>(cl.Of[first + j])) +
+            (carries ? 1 : 0);
+          byBlockers[j] = j;
+        }
+        const auto visibilityStart = std::chrono::steady_clock::now();
+        if (needVisibility)
+        {
+          std::stable_sort(byBlockers.begin(), byBlockers.end(),
+            [&](vtkIdType a, vtkIdType b) { return key[a] < key[b]; });
+          visibilities.resize(n2 * count);
+          batchPoints.resize(3 * count);
+          batchFacing.resize(3 * count);
+          batchVisibilities.resize(n2 * count);
+          batchUsed.resize(count);
+          batchStatuses.resize(count);
+          for (vtkIdType j = 0; j < count; ++j)
+          {
+            std::copy_n(&points[3 * byBlockers[j]], 3, &batchPoints[3 * j]);
+            std::copy_n(&facing[3 * byBlockers[j]], 3, &batchFacing[3 * j]);
+          }
+          for (vtkIdType start = 0; start < count;)
+          {
+            vtkIdType end = start + 1;
+            while (end < count && key[byBlockers[end]] == key[byBlockers[start]])
+            {
+              ++end;
+            }
+            const vtkIdType i = first + byBlockers[start];
+            const proxygi::Blockers& mine = cl.Of.empty() ? blockers : cl.Blockers[cl.Of[i]];
+            const proxygi::SoftShadows& kernel = key[byBlockers[start]] % 2 ? shadows : shadowsLog;
+            kernel.VisibilityBatch(static_cast<int>(end - start), &batchPoints[3 * start],
+              &batchFacing[3 * start], mine, &batchVisibilities[n2 * start], &batchStatuses[start],
+              &batchUsed[start]);
+            start = end;
+          }
+          for (vtkIdType j = 0; j < count; ++j)
+          {
+            const vtkIdType to = byBlockers[j];
+            std::copy_n(&batchVisibilities[n2 * j], n2, &visibilities[n2 * to]);
+            statuses[to] = batchStatuses[j];
+            used[to] = batchUsed[j];
+          }
+        }
+        // The planes' shadow scales (PlaneShadowScale), their visibilities
+        // batched the same way: one plane point per receiver and plane.
+        const int planes = static_cast<int>(blockers.Planes());
+        const bool scalePlanes =
+          (runIndirect || runPlaneBounce) && planeBounceShadows && planes > 0 && planes <= 8;
+        planeScales.clear();
+        if (scalePlanes && needVisibility)
+        {
+          planeScales.assign(3 * static_cast<std::size_t>(planes) * count, 1.0f);
+          for (int k = 0; k < planes; ++k)
+          {
+            const float* m = &blockers.PlaneNormal[3 * k];
+            who.clear();
+            for (vtkIdType j = 0; j < count; ++j)
+            {
+              const vtkIdType r = byBlockers[j];
+              if (proxygi::PlaneShadowPoint(
+                    blockers, k, &points[3 * r], &facing[3 * r], &batchPoints[3 * who.size()]))
+              {
+                std::copy_n(m, 3, &batchFacing[3 * who.size()]);
+                who.push_back(r);
+              }
+            }
+            const vtkIdType seeing = static_cast<vtkIdType>(who.size());
+            for (vtkIdType start = 0; start < seeing;)
+            {
+              vtkIdType end = start + 1;
+              while (end < seeing && key[who[end]] / 2 == key[who[start]] / 2)
+              {
+                ++end;
+              }
+              const vtkIdType i = first + who[start];
+              const proxygi::Blockers& mine = cl.Of.empty() ? blockers : cl.Blockers[cl.Of[i]];
+              shadows.VisibilityBatch(static_cast<int>(end - start), &batchPoints[3 * start],
+                &batchFacing[3 * start], mine, &batchVisibilities[n2 * start],
+                &batchStatuses[start], &batchUsed[start]);
+              start = end;
+            }
+            for (vtkIdType j = 0; j < seeing; ++j)
+            {
+              proxygi::PlaneShadowScaleAt(openShading, m, &batchVisibilities[n2 * j], batchUsed[j],
+                batchStatuses[j], &planeScales[3 * (who[j] * planes + k)]);
+            }
+          }
+        }
+        visibilityNs += std::chrono::duration_cast<std::chrono::nanoseconds>(
+          std::chrono::steady_clock::now() - visibilityStart)
+                          .count();
         for (vtkIdType i = first; i < last; ++i)
         {
-          double pd[3], nd[3], albedo[3];
+          const vtkIdType j = i - first;
+          double pd[3], albedo[3];
           receivers->GetPoint(i, pd);
-          UnitNormal(normals, i, nd);
-          const float p[3] = { float(pd[0]), float(pd[1]), float(pd[2]) };
-          const float nf[3] = { float(nd[0]), float(nd[1]), float(nd[2]) };
+          const float* p = &points[3 * j];
+          const float* nf = &facing[3 * j];
           float rgb[3], bounce[3] = { 0, 0, 0 }, lit[3] = { 0, 0, 0 },
                         bounceShadowed[3] = { 0, 0, 0 };
           const proxygi::Blockers& mine = cl.Of.empty() ? blockers : cl.Blockers[cl.Of[i]];
-          const bool lightCarriesPlanes = planesInLight && blockers.AboveEveryPlane(p);
+          const bool lightCarriesPlanes = key[j] % 2 == 1;
           seen.clear();
           if (needVisibility)
           {
-            proxygi::sh::Status status;
-            const proxygi::SoftShadows& kernel = lightCarriesPlanes ? shadows : shadowsLog;
-            if (kernel.Visibility(
-                  p, nf, mine, g, status, runIndirect || runPlaneBounce ? &seen : nullptr) > 0)
+            std::copy_n(&visibilities[n2 * j], n2, g);
+            if (used[j] > 0)
             {
               ++localShadowed;
             }
-            if (status != proxygi::sh::Status::Ok)
+            if (statuses[j] != proxygi::sh::Status::Ok)
             {
               ++localFailures;
               proxygi::sh::SetConstant(order, 1.0f, g);
-              seen.clear();
+            }
+            else if (runIndirect || runPlaneBounce)
+            {
+              shadows.Seen(p, nf, mine, seen);
             }
           }
           else
@@ -612,15 +800,10 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
               dc = static_cast<float>(sum / proxygi::sh::SqrtFourPi);
             }
             // Planes reflect less where the proxies shadow them.
-            float planeScale[3 * 8];
-            const bool scalePlanes = planeBounceShadows && mine.Planes() > 0 && mine.Planes() <= 8;
-            for (std::size_t k = 0; scalePlanes && k < mine.Planes(); ++k)
-            {
-              proxygi::PlaneShadowScale(
-                shadows, openShading, mine, static_cast<int>(k), p, nf, &planeScale[3 * k]);
-            }
+            const bool scaled = scalePlanes && !planeScales.empty();
             proxygi::IndirectExitRadiance(indirectOperator, secondary, mine, seen, dc, nf,
-              runIndirect ? bounce : planeBounce, scalePlanes ? planeScale : nullptr, !runIndirect);
+              runIndirect ? bounce : planeBounce, scaled ? &planeScales[3 * j * planes] : nullptr,
+              !runIndirect);
           }
           const proxygi::SphericalLights& myLights =
             cl.Lights.empty() ? shadowedLeaves : cl.Lights[cl.Of[i]];
@@ -669,6 +852,8 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
       });
     this->UpdateProgress(static_cast<double>(block + 1) / blocks);
   }
+  this->StageMs[4] = 1e-6 * static_cast<double>(visibilityNs.load());
+  this->StageMs[5] = 1e-6 * static_cast<double>(secondPassNs.load());
   if (runShadowed)
   {
     const double seconds = 1e-9 * static_cast<double>(secondPassNs.load());
@@ -698,8 +883,9 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
     line << (runShadows ? "shadows: " : "visibility (for indirect/local lights): ")
          << blockers.Spheres() << " proxy spheres, " << blockers.Planes()
          << (planesInLight ? " planes (carried by the light)" : " planes (log space)") << ", exp "
-         << proxygi::sh::ExpMethodName(b.Kernel.Exp.Method) << "; " << shadowed.load() << " of "
-         << n << " receivers had blockers in view (the others skipped the exp)";
+         << proxygi::sh::ExpMethodName(b.Kernel.Exp.Method) << ", kernels "
+         << proxygi::sh::BatchTargetName() << "; " << shadowed.load() << " of " << n
+         << " receivers had blockers in view (the others skipped the exp)";
     this->Plan.push_back(line.str());
   }
 
@@ -710,7 +896,11 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   output->GetPointData()->AddArray(local);
   output->GetPointData()->AddArray(total);
   // The picture the GPU paths draw, for colouring with Map Scalars off.
-  vtkNew<vtkUnsignedCharArray> colors;
+  if (!this->ColorArray || this->ColorArray->GetReferenceCount() > 1)
+  {
+    this->ColorArray = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  }
+  vtkUnsignedCharArray* colors = this->ColorArray;
   colors->SetName("RadianceSRGB");
   colors->SetNumberOfComponents(3);
   colors->SetNumberOfTuples(n);
@@ -740,6 +930,10 @@ int vtkPGIGlobalIllumination::RequestData(
 {
   this->Plan.clear();
   this->CommunicationTime = this->CommunicationBytes = 0.0;
+  using Clock = std::chrono::steady_clock;
+  const auto since = [](Clock::time_point from)
+  { return 1e3 * std::chrono::duration<double>(Clock::now() - from).count(); };
+  const Clock::time_point started = Clock::now();
   vtkPolyData* receivers = vtkPolyData::GetData(in[0]);
   vtkPolyData* output = vtkPolyData::GetData(out);
   vtkPolyData* proxies =
@@ -758,6 +952,7 @@ int vtkPGIGlobalIllumination::RequestData(
   else if (error.empty())
   {
     normals = proxygi::ReceiverNormals(receivers);
+    this->StageMs[0] = since(started);
     if (!normals)
     {
       error = "Could not compute receiver normals (no polygons?); give point normals.";
@@ -781,7 +976,9 @@ int vtkPGIGlobalIllumination::RequestData(
       return 0;
     }
   }
+  Clock::time_point stage = Clock::now();
   error = this->PrepareBake(globalProxies);
+  this->StageMs[1] = since(stage);
   if (!proxygi::parallel::AllOk(controller, error.empty(), error, agreed, &traffic))
   {
     vtkErrorMacro(<< agreed);
@@ -811,8 +1008,22 @@ int vtkPGIGlobalIllumination::RequestData(
   {
     this->ReceiverClusters.reset(new Clusters);
   }
+  stage = Clock::now();
   this->ClusterReceivers(receivers, normals);
+  this->StageMs[2] = since(stage);
+  stage = Clock::now();
   this->ShadeReceivers(receivers, normals, output);
+  this->StageMs[3] = since(stage);
+  {
+    std::ostringstream line;
+    line << "stages (ms): normals " << this->StageMs[0] << ", precompute " << this->StageMs[1]
+         << (this->Bake->GetNumberOfBuilds() != this->BuildsSeen ? " (built)" : " (reused)")
+         << ", receiver clusters and cuts " << this->StageMs[2] << ", shading " << this->StageMs[3]
+         << " (visibility " << this->StageMs[4] << ", spherical lights " << this->StageMs[5]
+         << ", summed over threads), total " << since(started);
+    this->BuildsSeen = this->Bake->GetNumberOfBuilds();
+    this->Plan.push_back(line.str());
+  }
   vtkNew<vtkStringArray> plan;
   plan->SetName("Plan");
   for (const std::string& line : this->Plan)

@@ -75,12 +75,15 @@
 #include "vtkPGIGIBake.h"
 #include "vtkPGIGISettings.h"
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h"
 
 #include <memory>
 #include <string>
 #include <vector>
 
 class vtkDataArray;
+class vtkFloatArray;
+class vtkUnsignedCharArray;
 class vtkMultiProcessController;
 class vtkPGILighting;
 
@@ -150,10 +153,20 @@ protected:
   vtkNew<vtkPGIGIBake> Bake;
   struct Clusters;
   std::unique_ptr<Clusters> ReceiverClusters;
+  struct ShadeBuffers;
+  std::unique_ptr<ShadeBuffers> Scratch;
   std::vector<std::string> Plan;
   double ColorExposure = 1.0;
   vtkMultiProcessController* Controller = nullptr;
   double CommunicationTime = 0.0, CommunicationBytes = 0.0;
+  // Per-stage milliseconds of the last update (normals, precompute, clusters,
+  // shading, and within shading the visibility and the spherical lights
+  // summed over threads), and the precompute's build count then.
+  double StageMs[6] = {};
+  // The output arrays, reused by the next update when nobody else holds them.
+  vtkSmartPointer<vtkFloatArray> OutputArrays[6];
+  vtkSmartPointer<vtkUnsignedCharArray> ColorArray;
+  int BuildsSeen = -1;
 
 private:
   vtkPGIGlobalIllumination(const vtkPGIGlobalIllumination&) = delete;

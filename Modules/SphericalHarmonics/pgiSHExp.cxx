@@ -48,6 +48,23 @@ int ScalingSteps(double normFHat)
   return std::max(0, static_cast<int>(std::floor(std::log2(normFHat) + 3.0)));
 }
 
+void HybridSchedule(int order, double norm, const ExpOptions& options, int& steps, double& w)
+{
+  const double limit =
+    options.HybridMaxNorm > 0.0 ? options.HybridMaxNorm : DefaultHybridMaxNorm(order);
+  steps = 0;
+  w = 0.0;
+  if (norm > 0.0)
+  {
+    const double u = std::log2(norm / limit);
+    if (u > -1.0)
+    {
+      steps = std::max(0, static_cast<int>(std::ceil(u)));
+      w = std::min(1.0, u - (steps - 1));
+    }
+  }
+}
+
 namespace
 {
 // Directions the range guard samples, with their basis values per order.
@@ -235,19 +252,9 @@ void HybridExp(int order, const TripleProduct& tp, const T* fHat, double norm, d
 {
   const int n2 = NumCoefficients(order);
   const CapTables& tables = CapTables::Get(order);
-  const double limit =
-    options.HybridMaxNorm > 0.0 ? options.HybridMaxNorm : DefaultHybridMaxNorm(order);
   int steps = 0;
   double w = 0.0;
-  if (norm > 0.0)
-  {
-    const double u = std::log2(norm / limit);
-    if (u > -1.0)
-    {
-      steps = std::max(0, static_cast<int>(std::ceil(u)));
-      w = std::min(1.0, u - (steps - 1));
-    }
-  }
+  HybridSchedule(order, norm, options, steps, w);
   T scaled[MaxCoefficients];
   auto scaledBase = [&](int s, T* out)
   {
@@ -275,10 +282,16 @@ void HybridExp(int order, const TripleProduct& tp, const T* fHat, double norm, d
 }
 } // namespace
 
-template <typename T>
-bool GuardRange(int order, T* g, double tolerance)
+const float* GuardBasis(int order, int& count)
 {
-  const int n2 = NumCoefficients(order);
+  const GuardSamples& samples = GuardSamples::Get(order);
+  count = samples.Count;
+  return samples.BasisF.data();
+}
+
+template <typename T>
+bool GuardInBounds(int order, const T* g, double tolerance)
+{
   const double mean = g[0] / SqrtFourPi;
   // Per band, |sum_m g_lm y_lm(s)| <= |g_l| sqrt((2l+1)/(4 pi)) (Cauchy-Schwarz
   // and the addition theorem): a cheap test that rules out most results.
@@ -292,11 +305,17 @@ bool GuardRange(int order, T* g, double tolerance)
     }
     bound += std::sqrt(band * (2 * l + 1) / (4.0 * Pi));
   }
-  const double lo = -tolerance, hi = 1.0 + tolerance;
-  if (mean - bound >= lo && mean + bound <= hi)
+  return mean - bound >= -tolerance && mean + bound <= 1.0 + tolerance;
+}
+
+template <typename T>
+bool GuardRange(int order, T* g, double tolerance)
+{
+  if (GuardInBounds(order, g, tolerance))
   {
     return false;
   }
+  const int n2 = NumCoefficients(order);
   const GuardSamples& samples = GuardSamples::Get(order);
   const T* basis = samples.Basis(T(0));
   double vmin = std::numeric_limits<double>::max(), vmax = -vmin;
@@ -306,6 +325,14 @@ bool GuardRange(int order, T* g, double tolerance)
     vmin = std::min(vmin, v);
     vmax = std::max(vmax, v);
   }
+  return GuardRemap(order, g, vmin, vmax, tolerance);
+}
+
+template <typename T>
+bool GuardRemap(int order, T* g, double vmin, double vmax, double tolerance)
+{
+  const int n2 = NumCoefficients(order);
+  const double lo = -tolerance, hi = 1.0 + tolerance;
   if (vmin >= lo && vmax <= hi)
   {
     return false;
@@ -395,7 +422,9 @@ void ExpByProjection(int order, const double* f, double* g)
 // NOLINTBEGIN(bugprone-macro-parentheses)
 #define PGI_INSTANTIATE(T)                                                                         \
   template PROXYGISPHERICALHARMONICS_EXPORT Status Exp<T>(int, const T*, T*, const ExpOptions&);   \
-  template PROXYGISPHERICALHARMONICS_EXPORT bool GuardRange<T>(int, T*, double);
+  template PROXYGISPHERICALHARMONICS_EXPORT bool GuardRange<T>(int, T*, double);                   \
+  template PROXYGISPHERICALHARMONICS_EXPORT bool GuardInBounds<T>(int, const T*, double);          \
+  template PROXYGISPHERICALHARMONICS_EXPORT bool GuardRemap<T>(int, T*, double, double, double);
 PGI_INSTANTIATE(float)
 PGI_INSTANTIATE(double)
 #undef PGI_INSTANTIATE

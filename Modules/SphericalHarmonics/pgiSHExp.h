@@ -73,6 +73,22 @@ PROXYGISPHERICALHARMONICS_EXPORT Status Exp(
 template <typename T>
 PROXYGISPHERICALHARMONICS_EXPORT bool GuardRange(int order, T* g, double tolerance);
 
+/// HYB's schedule at |f^| = norm: `steps` squarings, blended with weight w
+/// towards one more (see HybridExp in the .cxx).
+PROXYGISPHERICALHARMONICS_EXPORT void HybridSchedule(
+  int order, double norm, const ExpOptions& options, int& steps, double& w);
+
+/// GuardRange in parts, for the batched exp: the cheap per-band bound
+/// (true: g is in range, nothing to do), the guard's sample directions
+/// (count rows of order^2 basis values), and the remap from the sampled
+/// extremes.
+template <typename T>
+PROXYGISPHERICALHARMONICS_EXPORT bool GuardInBounds(int order, const T* g, double tolerance);
+PROXYGISPHERICALHARMONICS_EXPORT const float* GuardBasis(int order, int& count);
+template <typename T>
+PROXYGISPHERICALHARMONICS_EXPORT bool GuardRemap(
+  int order, T* g, double vmin, double vmax, double tolerance);
+
 /// Reference exp: projects exp(f(s)) with a dense quadrature (slow; tests).
 PROXYGISPHERICALHARMONICS_EXPORT void ExpByProjection(int order, const double* f, double* g);
 

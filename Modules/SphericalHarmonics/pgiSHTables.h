@@ -79,6 +79,10 @@ public:
   const std::vector<double>& GetLogTable() const { return this->LogD; }
   const std::vector<double>& GetOptimalLinearA() const { return this->OLA; }
   const std::vector<double>& GetOptimalLinearB() const { return this->OLB; }
+  /// The float log table the lookups read, and theta's scale to its rows
+  /// (the batched kernels gather from it).
+  const std::vector<float>& GetLogTableFloat() const { return this->LogF; }
+  double GetThetaScale() const { return this->ThetaScale; }
 
 private:
   template <typename T, typename Table>

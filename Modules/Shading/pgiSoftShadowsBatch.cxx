@@ -1,0 +1,131 @@
+// Compiled once per instruction set by Highway's foreach_target.h.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "pgiSoftShadowsBatch.cxx"
+#include "hwy/foreach_target.h" // IWYU pragma: keep
+
+#include "hwy/contrib/math/math-inl.h"
+#include "hwy/highway.h"
+
+#include "pgiSHBatch.h"
+#include "pgiSoftShadowsBatch.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace proxygi
+{
+namespace detail
+{
+namespace HWY_NAMESPACE
+{
+namespace hn = hwy::HWY_NAMESPACE;
+using D = hn::ScalableTag<float>;
+using V = hn::Vec<D>;
+constexpr int W = sh::BatchWidth;
+
+// The blockers' angular radius: Highway's float asin, one lane, for the
+// scalar path (the same polynomial the batch runs).
+float BlockerAsinImpl(float x)
+{
+  const hn::CappedTag<float, 1> d1;
+  return hn::GetLane(hn::Asin(d1, hn::Set(d1, x)));
+}
+
+// ReplaceBlocker and the MinAngle cut of VisitBlockers, lane by lane: every
+// branch is computed and the lane's case selected. No fused multiply-adds
+// (and -ffp-contract=off for this file): a receiver on its own proxy where
+// the tangent plane touches it (h -> -r) keeps or drops a blocker on the
+// last bit of h, so the rounding must be the scalar code's, bit for bit.
+void BlockerLanesImpl(const float* lanes, const float* X, const float* Y, const float* Z,
+  const float* R, int rows, float sinMin, bool rules, float* theta, float* dx, float* dy, float* dz)
+{
+  const D d;
+  const int count = static_cast<int>(hn::Lanes(d));
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f), half = hn::Set(d, 0.5f),
+          two = hn::Set(d, 2.0f), skip = hn::Set(d, -1.0f), sinCut = hn::Set(d, sinMin);
+  for (int k = 0; k < W; k += count)
+  {
+    const V px = hn::Load(d, lanes + k), py = hn::Load(d, lanes + W + k),
+            pz = hn::Load(d, lanes + 2 * W + k), nx = hn::Load(d, lanes + 3 * W + k),
+            ny = hn::Load(d, lanes + 4 * W + k), nz = hn::Load(d, lanes + 5 * W + k);
+    for (int s = 0; s < rows; ++s)
+    {
+      float* out = theta + s * W + k;
+      if (!(R[s] > 0.0f))
+      {
+        hn::Store(skip, d, out); // zero-radius (or NaN) spheres block nothing
+        continue;
+      }
+      const V cx = hn::Set(d, X[s]), cy = hn::Set(d, Y[s]), cz = hn::Set(d, Z[s]);
+      V r = hn::Set(d, R[s]);
+      V qx = cx, qy = cy, qz = cz;
+      auto keep = hn::Eq(zero, zero);
+      if (rules)
+      {
+        const V vx = hn::Sub(cx, px), vy = hn::Sub(cy, py), vz = hn::Sub(cz, pz);
+        const V h = hn::Add(hn::Add(hn::Mul(vx, nx), hn::Mul(vy, ny)), hn::Mul(vz, nz));
+        const V d2 = hn::Add(hn::Add(hn::Mul(vx, vx), hn::Mul(vy, vy)), hn::Mul(vz, vz));
+        const V r2 = hn::Mul(r, r), h2 = hn::Mul(h, h);
+        const auto behind = hn::Le(h, hn::Neg(r));
+        const auto front = hn::Ge(h, r);
+        const V rho = hn::Sqrt(hn::Max(zero, hn::Sub(d2, h2)));
+        const V delta = hn::Sqrt(hn::Max(zero, hn::Sub(r2, h2)));
+        const auto cut = hn::Gt(delta, zero);
+        const auto inside = hn::Lt(d2, r2);
+        // Inside: shrunk to the sphere tangent to T_p, ramped.
+        const V rampIn = hn::IfThenElse(
+          cut, hn::Min(one, hn::Div(hn::Mul(two, hn::Sub(delta, rho)), delta)), zero);
+        const V rIn = hn::Mul(h, hn::Max(zero, rampIn));
+        // Outside and cut: the sphere from the highest point down to T_p.
+        const V rampOut = hn::IfThenElse(
+          cut, hn::Min(one, hn::Div(hn::Div(hn::Sub(d2, r2), hn::Add(rho, delta)), delta)), one);
+        const V halfH = hn::Mul(half, hn::Add(h, r));
+        const V rOut = hn::Mul(halfH, hn::Max(zero, rampOut));
+        const V ox = hn::Add(hn::Sub(cx, hn::Mul(h, nx)), hn::Mul(halfH, nx));
+        const V oy = hn::Add(hn::Sub(cy, hn::Mul(h, ny)), hn::Mul(halfH, ny));
+        const V oz = hn::Add(hn::Sub(cz, hn::Mul(h, nz)), hn::Mul(halfH, nz));
+        const V rCut = hn::IfThenElse(inside, rIn, rOut);
+        const auto keepCut = hn::And(hn::Gt(rCut, zero), hn::Or(hn::Not(inside), hn::Gt(h, zero)));
+        r = hn::IfThenElse(front, r, rCut);
+        qx = hn::IfThenElse(hn::Or(front, inside), cx, ox);
+        qy = hn::IfThenElse(hn::Or(front, inside), cy, oy);
+        qz = hn::IfThenElse(hn::Or(front, inside), cz, oz);
+        keep = hn::AndNot(behind, hn::Or(front, keepCut));
+      }
+      const V ex = hn::Sub(qx, px), ey = hn::Sub(qy, py), ez = hn::Sub(qz, pz);
+      const V dist = hn::Sqrt(hn::Add(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)), hn::Mul(ez, ez)));
+      keep = hn::And(keep, hn::And(hn::Gt(dist, zero), hn::Ge(r, hn::Mul(sinCut, dist))));
+      const V sine = hn::Min(one, hn::Div(r, dist));
+      hn::Store(hn::IfThenElse(keep, hn::Asin(d, sine), skip), d, out);
+      hn::Store(hn::Div(ex, dist), d, dx + s * W + k);
+      hn::Store(hn::Div(ey, dist), d, dy + s * W + k);
+      hn::Store(hn::Div(ez, dist), d, dz + s * W + k);
+    }
+  }
+}
+
+} // namespace HWY_NAMESPACE
+} // namespace detail
+} // namespace proxygi
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace proxygi
+{
+namespace detail
+{
+HWY_EXPORT(BlockerLanesImpl);
+
+float BlockerAsin(float x)
+{
+  // The baseline build's target, so the scalar path is the same on every CPU.
+  return HWY_STATIC_DISPATCH(BlockerAsinImpl)(x);
+}
+
+void BlockerLanes(const float* lanes, const float* X, const float* Y, const float* Z,
+  const float* R, int rows, float sinMin, bool rules, float* theta, float* dx, float* dy, float* dz)
+{
+  HWY_DYNAMIC_DISPATCH(BlockerLanesImpl)
+  (lanes, X, Y, Z, R, rows, sinMin, rules, theta, dx, dy, dz);
+}
+} // namespace detail
+} // namespace proxygi
+#endif

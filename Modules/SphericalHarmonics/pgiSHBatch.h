@@ -1,0 +1,72 @@
+/**
+ * @file pgiSHBatch.h
+ * @brief SH kernels over a batch of BatchWidth receivers at once, in
+ * structure-of-arrays form (coefficient i of lane k at [i * BatchWidth + k]),
+ * compiled for several instruction sets (Google Highway) and dispatched at
+ * run time to the widest this CPU has (AVX-512, AVX2, SSE4, or baseline).
+ *
+ * Each kernel is the twin of a scalar one and is tested against it:
+ *  - BatchSquare: TripleProduct::Square;
+ *  - BatchAddCaps: CapTables::CapLog + RotateScaledZonal, summed;
+ *  - BatchExp: Exp (HYB vectorised, including the range guard; the other
+ *    methods run the scalar Exp lane by lane).
+ * Results agree with the scalar kernels to float rounding (the vector code
+ * fuses multiply-adds the scalar code rounds twice).
+ */
+#ifndef pgiSHBatch_h
+#define pgiSHBatch_h
+
+#include "pgiSH.h"
+#include "pgiSHExp.h"
+
+#include <string>
+#include <vector>
+
+namespace proxygi
+{
+namespace sh
+{
+class CapTables;
+
+/// Lanes per batch: 16 floats, one AVX-512 register (two AVX2, four SSE).
+constexpr int BatchWidth = 16;
+
+/// Whether the batched kernels are in use (default: yes, unless the
+/// environment sets PROXYGI_SIMD=0). Callers take their scalar path when not.
+PROXYGISPHERICALHARMONICS_EXPORT bool BatchKernelsEnabled();
+PROXYGISPHERICALHARMONICS_EXPORT void SetBatchKernelsEnabled(bool enabled);
+/// The instruction set the batched kernels dispatch to on this CPU
+/// ("AVX3" is AVX-512), or "scalar" when they are disabled.
+PROXYGISPHERICALHARMONICS_EXPORT const char* BatchTargetName();
+/// The instruction sets compiled in that this CPU runs, best first.
+PROXYGISPHERICALHARMONICS_EXPORT std::vector<std::string> BatchTargets();
+/// Dispatches every batched kernel to one of BatchTargets() from now on
+/// (tests and benchmarks compare them); "" returns to the best. False, and
+/// nothing changed, for a name not in the list.
+PROXYGISPHERICALHARMONICS_EXPORT bool SetBatchTarget(const std::string& name);
+
+/// out = f * f for BatchWidth lanes (order n in and out); out may not alias f.
+PROXYGISPHERICALHARMONICS_EXPORT void BatchSquare(int order, const float* f, float* out);
+
+/**
+ * f += sum over blockers b of CapLog(theta_b) (times ratio_b per band, if
+ * ratios) rotated to dir_b, for BatchWidth lanes. theta, dirX, dirY, dirZ
+ * hold count rows of BatchWidth values; a lane whose theta is negative is
+ * skipped for that blocker. ratios: count rows of `order` values, or null.
+ * Orders up to 6.
+ */
+PROXYGISPHERICALHARMONICS_EXPORT void BatchAddCaps(const CapTables& tables, int order, int count,
+  const float* theta, const float* dirX, const float* dirY, const float* dirZ, const float* ratios,
+  float* f);
+
+/**
+ * g = exp(f) for BatchWidth lanes, as Exp<float> does per lane; status
+ * receives each lane's status. f and g may not alias.
+ */
+PROXYGISPHERICALHARMONICS_EXPORT void BatchExp(
+  int order, const float* f, float* g, const ExpOptions& options, Status* status);
+
+} // namespace sh
+} // namespace proxygi
+
+#endif
