@@ -102,6 +102,10 @@ bool EnvironmentMap::FromImage(vtkImageData* image, EnvironmentMap& map, std::st
     return false;
   }
   std::vector<float> rgb(static_cast<std::size_t>(dims[0]) * dims[1] * 3);
+  // Float texels (the EXR reader's) straight from memory; others through
+  // the generic accessor.
+  vtkFloatArray* floats = vtkFloatArray::FastDownCast(scalars);
+  const int components = scalars->GetNumberOfComponents();
   for (int j = 0; j < dims[1]; ++j)
   {
     // VTK rows run bottom-up; the map's rows top-down.
@@ -109,10 +113,15 @@ bool EnvironmentMap::FromImage(vtkImageData* image, EnvironmentMap& map, std::st
     for (int i = 0; i < dims[0]; ++i)
     {
       const vtkIdType id = static_cast<vtkIdType>(row) * dims[0] + i;
+      float* out = &rgb[3 * (static_cast<std::size_t>(j) * dims[0] + i)];
+      if (floats)
+      {
+        std::copy_n(floats->GetPointer(id * components), 3, out);
+        continue;
+      }
       for (int c = 0; c < 3; ++c)
       {
-        rgb[3 * (static_cast<std::size_t>(j) * dims[0] + i) + c] =
-          static_cast<float>(scalars->GetComponent(id, c));
+        out[c] = static_cast<float>(scalars->GetComponent(id, c));
       }
     }
   }

@@ -4,6 +4,8 @@
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
 
+#include "vtkSMPTools.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -38,24 +40,29 @@ EnvironmentShading::EnvironmentShading(
   }
   // Grid nodes at the cell corners, poles included, so interpolation reaches them.
   this->LHTable.resize(static_cast<std::size_t>(this->Height + 1) * (this->Width + 1) * 3 * n2);
-  std::vector<double> h(n2), lh(n2);
-  for (int j = 0; j <= this->Height; ++j)
-  {
-    const double theta = sh::Pi * j / this->Height;
-    for (int i = 0; i <= this->Width; ++i)
+  // Rows are independent: one thread each (a first update waits on this).
+  vtkSMPTools::For(0, this->Height + 1,
+    [&](int first, int last)
     {
-      const double phi = 2 * sh::Pi * i / this->Width;
-      sh::DiffuseTransfer(order, std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-        std::cos(theta), h.data());
-      for (int c = 0; c < 3; ++c)
+      std::vector<double> h(n2), lh(n2);
+      for (int j = first; j < last; ++j)
       {
-        tp.Product(channels[c], h.data(), lh.data());
-        std::copy(lh.begin(), lh.end(),
-          this->LHTable.begin() +
-            ((static_cast<std::size_t>(j) * (this->Width + 1) + i) * 3 + c) * n2);
+        const double theta = sh::Pi * j / this->Height;
+        for (int i = 0; i <= this->Width; ++i)
+        {
+          const double phi = 2 * sh::Pi * i / this->Width;
+          sh::DiffuseTransfer(order, std::sin(theta) * std::cos(phi),
+            std::sin(theta) * std::sin(phi), std::cos(theta), h.data());
+          for (int c = 0; c < 3; ++c)
+          {
+            tp.Product(channels[c], h.data(), lh.data());
+            std::copy(lh.begin(), lh.end(),
+              this->LHTable.begin() +
+                ((static_cast<std::size_t>(j) * (this->Width + 1) + i) * 3 + c) * n2);
+          }
+        }
       }
-    }
-  }
+    });
 }
 
 void EnvironmentShading::Shade(const float n[3], const float* g, float rgb[3]) const

@@ -129,10 +129,8 @@ ShadowedIndirect::ShadowedIndirect(
   : Settings(settings)
   , Blocking(blocking)
 {
-  // Build the cached tables before the parallel loops.
-  sh::CapTables::Get(settings.Order);
-  sh::IndirectTables::Get(settings.Order);
-  sh::TripleProduct::Get(settings.Order);
+  // The tables are built on first use (thread-safe), so a kernel made for
+  // an effect that does not run costs nothing.
 }
 
 bool ShadowedIndirect::ExitRadiance(const SphericalLights& lights, bool emitLights,

@@ -514,30 +514,43 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
   }
   const double angle = this->Effective->GetHierarchyAngle();
   const float maxAngle = static_cast<float>(vtkMath::RadiansFromDegrees(angle));
+  // The clusters' cuts are independent: one thread each.
+  const bool rules = this->Effective->GetSelfShadowRules();
+  vtkSMPTools::For(0, clusters,
+    [&](int begin, int end)
+    {
+      std::vector<int> nodes;
+      for (int k = begin; k < end; ++k)
+      {
+        if (f.Radius[k] < 0.0)
+        {
+          continue;
+        }
+        const float pR[3] = { float(f.Centres[k][0]), float(f.Centres[k][1]),
+          float(f.Centres[k][2]) };
+        const float pf[3] = { float(f.At[k][0]), float(f.At[k][1]), float(f.At[k][2]) };
+        const float nf[3] = { float(f.Facing[k][0]), float(f.Facing[k][1]), float(f.Facing[k][2]) };
+        cl.Blockers[k] = proxygi::CutHierarchy(b.Hierarchy, pR, float(f.Radius[k]), pf, nf,
+          maxAngle, b.Order, rules, b.RunShadowed ? &nodes : nullptr);
+        if (b.RunShadowed)
+        {
+          CutSphericalLights(b.Lights, b.LeafLights, b.LeafOfNode, b.Hierarchy, nodes,
+            b.SceneBlockers, shadowedIndirect, pf, nf, cl.Lights[k]);
+        }
+        cl.Blockers[k].PlaneOrigin = b.SceneBlockers.PlaneOrigin;
+        cl.Blockers[k].PlaneNormal = b.SceneBlockers.PlaneNormal;
+        cl.Blockers[k].PlaneAlbedo = b.SceneBlockers.PlaneAlbedo;
+      }
+    });
   std::size_t cutTotal = 0;
   int used = 0;
   for (int k = 0; k < clusters; ++k)
   {
-    if (f.Radius[k] < 0.0)
+    if (f.Radius[k] >= 0.0)
     {
-      continue;
+      cutTotal += cl.Blockers[k].Spheres();
+      ++used;
     }
-    const float pR[3] = { float(f.Centres[k][0]), float(f.Centres[k][1]), float(f.Centres[k][2]) };
-    const float pf[3] = { float(f.At[k][0]), float(f.At[k][1]), float(f.At[k][2]) };
-    const float nf[3] = { float(f.Facing[k][0]), float(f.Facing[k][1]), float(f.Facing[k][2]) };
-    std::vector<int> nodes;
-    cl.Blockers[k] = proxygi::CutHierarchy(b.Hierarchy, pR, float(f.Radius[k]), pf, nf, maxAngle,
-      b.Order, this->Effective->GetSelfShadowRules(), b.RunShadowed ? &nodes : nullptr);
-    if (b.RunShadowed)
-    {
-      CutSphericalLights(b.Lights, b.LeafLights, b.LeafOfNode, b.Hierarchy, nodes, b.SceneBlockers,
-        shadowedIndirect, pf, nf, cl.Lights[k]);
-    }
-    cl.Blockers[k].PlaneOrigin = b.SceneBlockers.PlaneOrigin;
-    cl.Blockers[k].PlaneNormal = b.SceneBlockers.PlaneNormal;
-    cl.Blockers[k].PlaneAlbedo = b.SceneBlockers.PlaneAlbedo;
-    cutTotal += cl.Blockers[k].Spheres();
-    ++used;
   }
   std::ostringstream line;
   line << "hierarchy: " << used << " receiver clusters, cuts of "
