@@ -116,7 +116,6 @@ void UnitNormal(vtkDataArray* normals, vtkIdType i, double n[3])
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Lighting, vtkPGILighting);
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Controller, vtkMultiProcessController);
 
-// Receiver clusters and their hierarchy cuts (one blocker list each).
 namespace
 {
 struct ClusterFrames
@@ -141,7 +140,6 @@ struct ClusterKey
       this->PerCluster == o.PerCluster && this->Distributed == o.Distributed;
   }
 };
-} // namespace
 
 // One thread's buffers for shading a range of receivers.
 struct ShadeScratch
@@ -155,12 +153,15 @@ struct ShadeScratch
   std::vector<vtkIdType> ByBlockers, Who;
   std::vector<long long> Key;
 };
+} // namespace
 
 struct vtkPGIGlobalIllumination::ShadeBuffers
 {
   vtkSMPThreadLocal<ShadeScratch> PerThread;
 };
 
+// Receiver clusters and their hierarchy cuts (one blocker list each), and
+// the clustering they came from.
 struct vtkPGIGlobalIllumination::Clusters
 {
   std::vector<int> Of;
