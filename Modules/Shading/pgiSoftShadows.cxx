@@ -149,16 +149,6 @@ void VisitBlockers(const SoftShadowSettings& settings, bool ratios, const float 
 }
 } // namespace
 
-void SoftShadows::Seen(
-  const float p[3], const float n[3], const Blockers& b, std::vector<SeenBlocker>& seen) const
-{
-  seen.clear();
-  VisitBlockers(this->Settings, false, p, n, b,
-    [&](int index, float theta, float dx, float dy, float dz, const float*, bool) {
-      seen.push_back({ index, theta, { dx, dy, dz } });
-    });
-}
-
 int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& b, float* g,
   sh::Status& status, std::vector<SeenBlocker>* seen) const
 {
@@ -211,7 +201,7 @@ int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& 
 }
 
 void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, const Blockers& b,
-  float* g, sh::Status* status, int* used) const
+  float* g, sh::Status* status, int* used, std::vector<SeenBlocker>* seen) const
 {
   const int order = this->Settings.Order, acc = this->AccOrder;
   const int n2 = sh::NumCoefficients(order), a2 = sh::NumCoefficients(acc);
@@ -219,7 +209,8 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
   {
     for (int i = 0; i < count; ++i)
     {
-      used[i] = this->Visibility(&p[3 * i], &n[3 * i], b, &g[i * n2], status[i]);
+      used[i] =
+        this->Visibility(&p[3 * i], &n[3 * i], b, &g[i * n2], status[i], seen ? &seen[i] : nullptr);
     }
     return;
   }
@@ -233,6 +224,9 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
   alignas(64) float f[sh::MaxCoefficients * W], e[sh::MaxCoefficients * W];
   int laneUsed[W];
   sh::Status laneStatus[W];
+  // Rows [0, rows) of theta and the directions: counted for the lanes that
+  // accumulate them, listed for the receivers that want them (row r is
+  // blocker first + r, or plane k for index -1 - k).
   auto countUsed = [&](int rows)
   {
     for (int r = 0; r < rows; ++r)
@@ -240,6 +234,20 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
       for (int k = 0; k < W; ++k)
       {
         laneUsed[k] += theta[r * W + k] >= 0.0f ? 1 : 0;
+      }
+    }
+  };
+  auto list = [&](int start, int m, int rows, int firstIndex, int step)
+  {
+    for (int k = 0; seen && k < m; ++k)
+    {
+      for (int r = 0; r < rows; ++r)
+      {
+        const int q = r * W + k;
+        if (theta[q] >= 0.0f)
+        {
+          seen[start + k].push_back({ firstIndex + step * r, theta[q], { dx[q], dy[q], dz[q] } });
+        }
       }
     }
   };
@@ -256,6 +264,10 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
       }
       laneUsed[k] = 0;
     }
+    for (int k = 0; seen && k < m; ++k)
+    {
+      seen[first + k].clear();
+    }
     std::fill(f, f + a2 * W, 0.0f);
     for (int s0 = 0; s0 < spheres; s0 += Rows)
     {
@@ -263,10 +275,13 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
       detail::BlockerLanes(lanes, &b.X[s0], &b.Y[s0], &b.Z[s0], &b.R[s0], rows, sinMin,
         this->Settings.SelfShadowRules, theta, dx, dy, dz);
       countUsed(rows);
+      list(first, m, rows, s0, 1);
       sh::BatchAddCaps(
         tables, acc, rows, theta, dx, dy, dz, ratios ? &b.Ratio[s0 * order] : nullptr, f);
     }
-    for (int k0 = 0; this->Settings.PlanesInLogSpace && k0 < planes; k0 += Rows)
+    // Planes are listed whether or not they are in log space.
+    const bool planeRows = this->Settings.PlanesInLogSpace || seen;
+    for (int k0 = 0; planeRows && k0 < planes; k0 += Rows)
     {
       const int rows = std::min(Rows, planes - k0);
       for (int r = 0; r < rows; ++r)
@@ -283,8 +298,12 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
           dz[r * W + k] = -pn[2];
         }
       }
-      countUsed(rows);
-      sh::BatchAddCaps(tables, acc, rows, theta, dx, dy, dz, nullptr, f);
+      list(first, m, rows, -1 - k0, -1);
+      if (this->Settings.PlanesInLogSpace)
+      {
+        countUsed(rows);
+        sh::BatchAddCaps(tables, acc, rows, theta, dx, dy, dz, nullptr, f);
+      }
     }
     if (std::any_of(laneUsed, laneUsed + W, [](int u) { return u > 0; }))
     {

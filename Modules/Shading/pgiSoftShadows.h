@@ -133,14 +133,12 @@ public:
    * used (count each) as Visibility gives them. Runs sh::BatchWidth
    * receivers at once through the batched kernels (pgiSHBatch.h) where they
    * are enabled and the accumulation order is at most 6; receivers one at a
-   * time otherwise. Allocates nothing.
+   * time otherwise. `seen`, if given, is `count` lists that receive each
+   * receiver's blockers as Visibility's `seen` does. Allocates nothing
+   * beyond those lists' growth.
    */
   void VisibilityBatch(int count, const float* p, const float* n, const Blockers& blockers,
-    float* g, sh::Status* status, int* used) const;
-
-  /// The blockers receiver (p, n) sees after the rules, as Visibility lists them.
-  void Seen(const float p[3], const float n[3], const Blockers& blockers,
-    std::vector<SeenBlocker>& seen) const;
+    float* g, sh::Status* status, int* used, std::vector<SeenBlocker>* seen = nullptr) const;
 
 private:
   /// The window, applied to a visibility vector of the output order.

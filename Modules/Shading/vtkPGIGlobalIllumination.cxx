@@ -144,7 +144,7 @@ struct ClusterKey
 // One thread's buffers for shading a range of receivers.
 struct ShadeScratch
 {
-  std::vector<proxygi::SeenBlocker> Seen;
+  std::vector<std::vector<proxygi::SeenBlocker>> Seen, BatchSeen;
   proxygi::SphericalLightScratch Lights;
   std::vector<float> Points, Facing, BatchPoints, BatchFacing, Visibilities, BatchVisibilities,
     PlaneScales;
@@ -633,7 +633,6 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
         proxygi::sh::SetConstant(order, 1.0f, unshadowed);
         // This thread's buffers, kept from range to range and update to update.
         ShadeScratch& buffers = this->Scratch->PerThread.Local();
-        std::vector<proxygi::SeenBlocker>& seen = buffers.Seen;
         proxygi::SphericalLightScratch& scratch = buffers.Lights;
         vtkIdType localShadowed = 0, localFailures = 0, localShadowedFailures = 0;
         long long localSecondPassNs = 0;
@@ -656,6 +655,12 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
         used.resize(count);
         byBlockers.resize(count);
         key.resize(count);
+        // The blockers each receiver sees, for the indirect light.
+        const bool wantSeen = runIndirect || runPlaneBounce;
+        std::vector<std::vector<proxygi::SeenBlocker>>&seens = buffers.Seen,
+        &batchSeens = buffers.BatchSeen;
+        seens.resize(count);
+        batchSeens.resize(count);
         for (vtkIdType j = 0; j < count; ++j)
         {
           double pd[3], nd[3];
@@ -670,6 +675,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
           key[j] = 2 * (cl.Of.empty() ? 0LL : static_cast<long long>(cl.Of[first + j])) +
             (carries ? 1 : 0);
           byBlockers[j] = j;
+          seens[j].clear();
         }
         const auto visibilityStart = std::chrono::steady_clock::now();
         if (needVisibility)
@@ -699,7 +705,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             const proxygi::SoftShadows& kernel = key[byBlockers[start]] % 2 ? shadows : shadowsLog;
             kernel.VisibilityBatch(static_cast<int>(end - start), &batchPoints[3 * start],
               &batchFacing[3 * start], mine, &batchVisibilities[n2 * start], &batchStatuses[start],
-              &batchUsed[start]);
+              &batchUsed[start], wantSeen ? &batchSeens[start] : nullptr);
             start = end;
           }
           for (vtkIdType j = 0; j < count; ++j)
@@ -708,6 +714,10 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             std::copy_n(&batchVisibilities[n2 * j], n2, &visibilities[n2 * to]);
             statuses[to] = batchStatuses[j];
             used[to] = batchUsed[j];
+            if (wantSeen)
+            {
+              seens[to].swap(batchSeens[j]);
+            }
           }
         }
         // The planes' shadow scales (PlaneShadowScale), their visibilities
@@ -769,7 +779,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
                         bounceShadowed[3] = { 0, 0, 0 };
           const proxygi::Blockers& mine = cl.Of.empty() ? blockers : cl.Blockers[cl.Of[i]];
           const bool lightCarriesPlanes = key[j] % 2 == 1;
-          seen.clear();
+          std::vector<proxygi::SeenBlocker>& seen = seens[j];
           if (needVisibility)
           {
             std::copy_n(&visibilities[n2 * j], n2, g);
@@ -781,10 +791,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             {
               ++localFailures;
               proxygi::sh::SetConstant(order, 1.0f, g);
-            }
-            else if (runIndirect || runPlaneBounce)
-            {
-              shadows.Seen(p, nf, mine, seen);
+              seen.clear();
             }
           }
           else

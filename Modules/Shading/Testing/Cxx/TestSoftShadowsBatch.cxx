@@ -94,7 +94,8 @@ int TestSoftShadowsBatch(int, char*[])
     // Accumulation orders up to 4, and 5-6: the batch against the scalar,
     // and the scalar against itself with the radii one ulp larger.
     double worst = 0.0, worstHigh = 0.0, floor = 0.0, floorHigh = 0.0;
-    long within = 0, total = 0;
+    long within = 0, total = 0, seenDiffer = 0;
+    double seenWorst = 0.0;
     long usedDiffer = 0;
     for (int variant = 0; variant < 8; ++variant)
     {
@@ -131,14 +132,34 @@ int TestSoftShadowsBatch(int, char*[])
         std::vector<float> g(count * n2), ref(n2), ref2(n2);
         std::vector<sh::Status> status(count);
         std::vector<int> used(count);
-        shadows.VisibilityBatch(
-          count, c.P.data(), c.N.data(), b, g.data(), status.data(), used.data());
+        // Stale entries the batch must clear.
+        std::vector<std::vector<SeenBlocker>> seen(count, { { 7, 0.1f, { 0, 0, 1 } } });
+        std::vector<SeenBlocker> seenRef;
+        shadows.VisibilityBatch(count, c.P.data(), c.N.data(), b, g.data(), status.data(),
+          used.data(), variant % 2 ? seen.data() : nullptr);
         for (int i = 0; i < count; ++i)
         {
           sh::Status expected;
           const int blockers =
-            shadows.Visibility(&c.P[3 * i], &c.N[3 * i], b, ref.data(), expected);
+            shadows.Visibility(&c.P[3 * i], &c.N[3 * i], b, ref.data(), expected, &seenRef);
           usedDiffer += blockers != used[i] ? 1 : 0;
+          // The blockers seen: the same ones, angles and directions to float
+          // rounding (the lists feed the indirect light).
+          if (variant % 2)
+          {
+            seenDiffer += seen[i].size() != seenRef.size() ? 1 : 0;
+            for (std::size_t q = 0; q < std::min(seen[i].size(), seenRef.size()); ++q)
+            {
+              seenDiffer += seen[i][q].Index != seenRef[q].Index ? 1 : 0;
+              seenWorst =
+                std::max(seenWorst, double(std::fabs(seen[i][q].Theta - seenRef[q].Theta)));
+              for (int k = 0; k < 3; ++k)
+              {
+                seenWorst =
+                  std::max(seenWorst, double(std::fabs(seen[i][q].Dir[k] - seenRef[q].Dir[k])));
+              }
+            }
+          }
           sh::Status nudgedStatus;
           shadows.Visibility(&c.P[3 * i], &c.N[3 * i], nudged, ref2.data(), nudgedStatus);
           PGI_CHECK(status[i] == expected);
@@ -171,6 +192,10 @@ int TestSoftShadowsBatch(int, char*[])
     PGI_BELOW(worstHigh, std::max(1e-5, 2.0 * floorHigh));
     PGI_BELOW(static_cast<double>(total - within), 0.001 * static_cast<double>(total));
     PGI_CHECK(usedDiffer == 0);
+    std::printf("%s: seen lists: %ld differ, worst angle or direction difference %.2e\n",
+      target.c_str(), seenDiffer, seenWorst);
+    PGI_CHECK(seenDiffer == 0);
+    PGI_BELOW(seenWorst, 1e-6);
   }
   std::printf("%ld receivers compared, %ld with blockers in view\n", compared, withBlockers);
   // A receiver on its own proxy where the tangent plane touches it (h = -r
