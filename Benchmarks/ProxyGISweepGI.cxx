@@ -75,6 +75,7 @@ void AddIndirectSum(const std::vector<vtkSmartPointer<vtkPolyData>>& shaded)
   {
     vtkDataArray* a = s->GetPointData()->GetArray("IndirectProxy");
     vtkDataArray* b = s->GetPointData()->GetArray("IndirectShadowed");
+    vtkDataArray* own = s->GetPointData()->GetArray("IndirectSelf");
     vtkNew<vtkDoubleArray> sum;
     sum->SetName("IndirectAny");
     sum->SetNumberOfComponents(3);
@@ -83,7 +84,9 @@ void AddIndirectSum(const std::vector<vtkSmartPointer<vtkPolyData>>& shaded)
     {
       for (int c = 0; c < 3; ++c)
       {
-        sum->SetComponent(i, c, a->GetComponent(i, c) + (b ? b->GetComponent(i, c) : 0.0));
+        sum->SetComponent(i, c,
+          a->GetComponent(i, c) + (b ? b->GetComponent(i, c) : 0.0) +
+            (own ? own->GetComponent(i, c) : 0.0));
       }
     }
     s->GetPointData()->AddArray(sum);
@@ -134,6 +137,14 @@ int main(int argc, char* argv[])
     return 1;
   }
   const auto receivers = SceneReceivers(loaded);
+  // The same receivers with each mesh's own visibility traced (cached).
+  auto receiversTraced = receivers;
+  double selfSeconds = 0.0;
+  if (!AddSelfVisibility(scene, receiversTraced, 4, 256, cache, selfSeconds, error, &progress))
+  {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return progress.Interrupted() ? InterruptedExitCode : 1;
+  }
   double refSeconds = 0.0;
   std::printf("reference: %d samples per vertex...\n", referenceSpp);
   const auto truth = SceneReference(
@@ -174,6 +185,7 @@ int main(int argc, char* argv[])
     bool PlaneBounceShadows = true;
     int Mode = vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
     int Blocking = vtkPGIGISettings::BLOCKING_PER_SPHERE;
+    bool SelfVisibility = false;
   };
   std::vector<Config> configs;
   configs.push_back({ "baseline", "order 4, HYB, 64 spheres, averaged" });
@@ -237,6 +249,15 @@ int main(int argc, char* argv[])
     configs.push_back(c);
   }
   {
+    Config c{ "self-visibility", "traced once, 256 rays (vtkPGISelfVisibility)" };
+    c.SelfVisibility = true;
+    configs.push_back(c);
+    c.Setting = "traced, shadowed bounce, hierarchy 25 deg";
+    c.Mode = vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
+    c.Hierarchy = 25.0;
+    configs.push_back(c);
+  }
+  {
     Config c{ "no shadows", "unshadowed environment (what shadows buy)" };
     c.Shadows = false;
     configs.push_back(c);
@@ -259,7 +280,7 @@ int main(int argc, char* argv[])
     {
       shaded.clear();
       const auto t0 = Clock::now();
-      for (auto& r : receivers)
+      for (auto& r : c.SelfVisibility ? receiversTraced : receivers)
       {
         vtkNew<vtkPGIGlobalIllumination> gi;
         gi->SetInputData(r);
@@ -378,6 +399,13 @@ int main(int argc, char* argv[])
       return progress.Interrupted() ? InterruptedExitCode : 1;
     }
     const auto rc = SceneReceivers(ld);
+    auto rcTraced = rc;
+    double selfTracing = 0.0;
+    if (!AddSelfVisibility(sd, rcTraced, 4, 256, cache, selfTracing, error, &progress))
+    {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return progress.Interrupted() ? InterruptedExitCode : 1;
+    }
     double tracing = 0.0, tracingProxies = 0.0;
     const auto ref =
       SceneReference(sd, ld, rc, sceneSpp, cache, nullptr, tracing, error, 1, true, &progress);
@@ -397,9 +425,11 @@ int main(int argc, char* argv[])
         planes.push_back(k);
       }
     }
-    for (int mode :
-      { vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED, vtkPGIGISettings::INDIRECT_MODE_SHADOWED })
+    for (int variant = 0; variant < 4; ++variant)
     {
+      const int mode = variant % 2 ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+                                   : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
+      const bool traced = variant >= 2;
       std::vector<vtkSmartPointer<vtkPolyData>> shaded;
       vtkIdType count = 0;
       double best = 1e300;
@@ -407,7 +437,7 @@ int main(int argc, char* argv[])
       {
         shaded.clear();
         const auto t0 = Clock::now();
-        for (auto& r : rc)
+        for (auto& r : traced ? rcTraced : rc)
         {
           vtkNew<vtkPGIGlobalIllumination> gi;
           gi->SetInputData(r);
@@ -424,7 +454,9 @@ int main(int argc, char* argv[])
       std::snprintf(line, sizeof(line),
         "| %s | %s | %lld | %.3f | %.1f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% |\n",
         sd.Name.c_str(),
-        mode == vtkPGIGISettings::INDIRECT_MODE_SHADOWED ? "shadowed" : "unshadowed",
+        mode == vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+          ? (traced ? "shadowed, self-visibility traced" : "shadowed")
+          : (traced ? "unshadowed, self-visibility traced" : "unshadowed"),
         static_cast<long long>(count), best, tracing,
         100 * RelativeRMS(ref, "RadianceStdErr", "Radiance"),
         100 * RelativeRMSE(shaded, "DirectShadowed", ref, "DirectShadowed"),

@@ -56,6 +56,10 @@ an option a mode has no use for as "note: ... does not apply".
   --hierarchy DEG     hierarchy cuts (vertex mode): receiver clusters use the
                       cut whose spheres subtend less than DEG (default 25 in
                       vertex mode, 0 = all leaves; 0 in the GPU modes)
+  --self-visibility N vertex mode: each mesh's own shadows from N Embree rays
+                      per vertex, traced once and cached (vtkPGISelfVisibility),
+                      instead of its own proxies under the self-shadow rules
+                      (default 256; 0: the rules)
   --size WxH          image size (default: the scene's)
   --reference-spp N   samples per vertex of the reference (default 1024)
   --exposure E        tone-mapping scale (default: 95th percentile to 0.8)

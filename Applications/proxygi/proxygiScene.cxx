@@ -67,6 +67,7 @@ struct RenderOptions
   std::string Mode = "gpu";
   std::string AutoReason; // why --mode auto chose Mode
   int Order = 4, Spheres = 64, ReferenceSpp = 1024, ReceiverScale = 2, PixelSpp = 256;
+  int SelfVisibility = 256; // rays per vertex of the meshes' own visibility; 0: the rules
   int ExpMethod = vtkPGIGISettings::EXP_HYB;
   std::string MethodName = "HYB", IndirectName = "shadowed";
   double HierarchyAngle = 25.0, Exposure = 0.0;
@@ -109,6 +110,7 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   // Hierarchy cuts are the CPU filter's: on by default there only.
   o.HierarchyAngle = NumberOption(args, "--hierarchy", o.Mode == "vertex" ? 25.0 : 0.0, ok);
   o.ReceiverScale = static_cast<int>(NumberOption(args, "--scale", 2, ok));
+  o.SelfVisibility = static_cast<int>(NumberOption(args, "--self-visibility", 256, ok));
   o.PixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
   o.Exposure = NumberOption(args, "--exposure", 0.0, ok);
   o.Output = Option(args, "-o", "proxygi-render.png");
@@ -130,11 +132,11 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   if ((!o.Gpu() && !o.Vertex() && !o.ImageSpace()) ||
     (o.ReceiverScale != 1 && o.ReceiverScale != 2 && o.ReceiverScale != 4 &&
       o.ReceiverScale != 8) ||
-    o.PixelSpp < 1)
+    o.PixelSpp < 1 || o.SelfVisibility < 0 || o.SelfVisibility > 65536)
   {
     vtkLogF(ERROR,
       "proxygi render: --mode gpu|vertex|image-space, --scale 1|2|4|8, "
-      "--pixel-reference-spp >= 1");
+      "--pixel-reference-spp >= 1, 0 <= --self-visibility <= 65536");
     return false;
   }
   if (o.IndirectName != "shadowed" && o.IndirectName != "unshadowed" && o.IndirectName != "off")
@@ -165,6 +167,10 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   if (!o.ImageSpace())
   {
     notFor("--scale", "the receiver buffer is the image-space pass's");
+  }
+  if (!o.Vertex())
+  {
+    notFor("--self-visibility", "the GPU backends run the self-shadow rules");
   }
   if (o.ImageSpace())
   {
@@ -343,7 +349,19 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       progress.Interrupted() ? "; nothing written, nothing cached" : "");
     return progress.Interrupted() ? InterruptedExitCode : 1;
   }
-  const auto receiversIn = SceneReceivers(loaded);
+  auto receiversIn = SceneReceivers(loaded);
+  if (o.Vertex() && o.SelfVisibility > 0)
+  {
+    double seconds = 0.0;
+    if (!AddSelfVisibility(
+          scene, receiversIn, o.Order, o.SelfVisibility, o.Cache, seconds, error, &progress))
+    {
+      vtkLogF(ERROR, "proxygi render: %s", error.c_str());
+      return progress.Interrupted() ? InterruptedExitCode : 1;
+    }
+    std::printf("self-visibility: %d rays per vertex, %s\n", o.SelfVisibility,
+      seconds > 0.0 ? ("traced in " + std::to_string(seconds) + " s").c_str() : "cached");
+  }
   vtkIdType receivers = 0;
   for (auto& s : receiversIn)
   {

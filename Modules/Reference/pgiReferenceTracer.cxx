@@ -618,6 +618,50 @@ void ReferenceTracer::EstimateRadianceAlongRay(const double origin[3], const dou
   }
 }
 
+bool ReferenceTracer::Occluded(const double x[3], const double n[3], const double d[3]) const
+{
+  const double eps = this->Impl->Epsilon;
+  const double o[3] = { x[0] + eps * n[0], x[1] + eps * n[1], x[2] + eps * n[2] };
+  return proxygi::Occluded(
+    Settings(), this->Impl->Scene, o, d, std::numeric_limits<double>::infinity(), this->Rays);
+}
+
+bool ReferenceTracer::HitVertices(
+  const double x[3], const double n[3], const double d[3], unsigned ids[3], double weights[3]) const
+{
+  const Internal& s = *this->Impl;
+  const double eps = s.Epsilon;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = static_cast<float>(x[0] + eps * n[0]);
+  rh.ray.org_y = static_cast<float>(x[1] + eps * n[1]);
+  rh.ray.org_z = static_cast<float>(x[2] + eps * n[2]);
+  rh.ray.dir_x = static_cast<float>(d[0]);
+  rh.ray.dir_y = static_cast<float>(d[1]);
+  rh.ray.dir_z = static_cast<float>(d[2]);
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.flags = 0;
+  rh.ray.time = 0.0f;
+  rh.ray.id = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(s.Scene, &context, &rh);
+  this->Rays.fetch_add(1, std::memory_order_relaxed);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.geomID == s.SphereGeometry)
+  {
+    return false;
+  }
+  const Mesh& mesh = s.Meshes[s.MeshOfGeometry[rh.hit.geomID]];
+  std::copy_n(&mesh.Triangles[3 * rh.hit.primID], 3, ids);
+  weights[0] = 1.0 - rh.hit.u - rh.hit.v;
+  weights[1] = rh.hit.u;
+  weights[2] = rh.hit.v;
+  return true;
+}
+
 bool ReferenceTracer::FirstHit(const double origin[3], const double direction[3], double& t,
   double normal[3], float albedo[3]) const
 {

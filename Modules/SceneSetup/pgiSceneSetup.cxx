@@ -4,6 +4,7 @@
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 #include "vtkPGIReferenceIllumination.h"
+#include "vtkPGISelfVisibility.h"
 #include "vtkPGISphereHierarchy.h"
 #include "vtkPGISphereLightSampler.h"
 #include "vtkPGISphereSetApproximation.h"
@@ -11,6 +12,7 @@
 #include "vtkAppendPolyData.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -297,6 +299,95 @@ void ConfigureSettings(vtkPGIGISettings* settings, const SceneDescription& scene
   settings->SetShadows(scene.Shadows);
   settings->SetIndirect(scene.Indirect);
   settings->SetLocalLights(scene.LocalLights);
+}
+
+bool AddSelfVisibility(const SceneDescription& scene,
+  std::vector<vtkSmartPointer<vtkPolyData>>& receivers, int order, int samples,
+  const std::string& cacheDir, double& seconds, std::string& error, SetupMonitor* monitor)
+{
+  const auto t0 = Clock::now();
+  bool traced = false;
+  if (!cacheDir.empty())
+  {
+    vtksys::SystemTools::MakeDirectory(cacheDir);
+  }
+  const char* names[] = { "SelfLogVisibility", "SelfVisibilityRest", "ObjectId" };
+  const char* fieldNames[] = { "SelfBounceOffsets", "SelfBounceTargets", "SelfBounceWeights" };
+  for (std::size_t k = 0; k < receivers.size() && k < scene.Objects.size(); ++k)
+  {
+    if (scene.Objects[k].Type != SceneObject::Kind::Mesh)
+    {
+      continue;
+    }
+    vtkPolyData* receiver = receivers[k];
+    const vtkIdType n = receiver->GetNumberOfPoints();
+    const std::string cached = cacheDir.empty() ? std::string()
+                                                : cacheDir + "/self-visibility-" +
+        Key(Describe(scene.Objects[k]) + '|' + std::to_string(n) + '|' + std::to_string(order) +
+          '|' + std::to_string(samples) + "|nearest-corner bounce, front hits") +
+        ".vtp";
+    vtkSmartPointer<vtkPolyData> arrays = Exists(cached) ? Read(cached) : nullptr;
+    if (arrays && arrays->GetNumberOfPoints() != n)
+    {
+      arrays = nullptr;
+    }
+    for (const char* name : names)
+    {
+      arrays = arrays && arrays->GetPointData()->GetArray(name) ? arrays : nullptr;
+    }
+    for (const char* name : fieldNames)
+    {
+      arrays = arrays && arrays->GetFieldData()->GetArray(name) ? arrays : nullptr;
+    }
+    if (!arrays)
+    {
+      traced = true;
+      vtkNew<vtkPGISelfVisibility> self;
+      self->SetInputData(receiver);
+      self->SetOrder(order);
+      self->SetSamples(samples);
+      self->SetObjectId(static_cast<int>(k));
+      if (!Run(
+            self, "tracing the self-visibility of '" + scene.Objects[k].Name + "'", monitor, error))
+      {
+        return false;
+      }
+      if (self->GetOutput()->GetNumberOfPoints() != n)
+      {
+        error = "the self-visibility of '" + scene.Objects[k].Name + "' failed";
+        return false;
+      }
+      arrays = vtkSmartPointer<vtkPolyData>::New();
+      vtkNew<vtkPoints> points;
+      points->DeepCopy(receiver->GetPoints());
+      arrays->SetPoints(points);
+      for (const char* name : names)
+      {
+        arrays->GetPointData()->AddArray(self->GetOutput()->GetPointData()->GetArray(name));
+      }
+      for (const char* name : fieldNames)
+      {
+        arrays->GetFieldData()->AddArray(self->GetOutput()->GetFieldData()->GetArray(name));
+      }
+      if (!cached.empty())
+      {
+        Write(arrays, cached);
+      }
+    }
+    auto with = vtkSmartPointer<vtkPolyData>::New();
+    with->ShallowCopy(receiver);
+    for (const char* name : names)
+    {
+      with->GetPointData()->AddArray(arrays->GetPointData()->GetArray(name));
+    }
+    for (const char* name : fieldNames)
+    {
+      with->GetFieldData()->AddArray(arrays->GetFieldData()->GetArray(name));
+    }
+    receivers[k] = with;
+  }
+  seconds = traced ? std::chrono::duration<double>(Clock::now() - t0).count() : 0.0;
+  return true;
 }
 
 std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(const SceneDescription& scene,

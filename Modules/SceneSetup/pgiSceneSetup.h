@@ -62,6 +62,19 @@ PROXYGISCENESETUP_EXPORT bool BuildSceneProxies(const SceneDescription& scene,
 PROXYGISCENESETUP_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(
   const LoadedScene& loaded);
 
+/**
+ * Each mesh receiver's own visibility (vtkPGISelfVisibility: `samples` rays
+ * per vertex, SH of `order`), added to `receivers` as point arrays, with
+ * "ObjectId" the object's index so that the GI filter leaves its own proxies
+ * out. Planes and exact spheres get none (nothing of them shadows them).
+ * Cached in `cacheDir` by object, vertex count, order and samples; `seconds`
+ * is the tracing time of this call (0 when all came from the cache).
+ */
+PROXYGISCENESETUP_EXPORT bool AddSelfVisibility(const SceneDescription& scene,
+  std::vector<vtkSmartPointer<vtkPolyData>>& receivers, int order, int samples,
+  const std::string& cacheDir, double& seconds, std::string& error,
+  SetupMonitor* monitor = nullptr);
+
 /// The scene's effect switches (shadows, indirect, local lights) on GI
 /// settings; the knobs (order, method, ...) are left to the caller.
 PROXYGISCENESETUP_EXPORT void ConfigureSettings(

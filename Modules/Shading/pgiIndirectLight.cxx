@@ -79,8 +79,9 @@ SecondaryLights::SecondaryLights(
 
 void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   const Blockers& blockers, const std::vector<SeenBlocker>& seen, float visibilityDC,
-  const float n[3], float rgb[3], const float* planeScale, bool planesOnly)
+  const float n[3], float rgb[3], const float* planeScale, bool planesOnly, int silentObject)
 {
+  const bool silence = silentObject >= 0 && blockers.Object.size() == blockers.Spheres();
   rgb[0] = rgb[1] = rgb[2] = 0.0f;
   if (seen.empty())
   {
@@ -121,7 +122,8 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
       continue;
     }
     const float* albedo = &blockers.Albedo[3 * static_cast<std::size_t>(b.Index)];
-    if (planesOnly || (albedo[0] <= 0.0f && albedo[1] <= 0.0f && albedo[2] <= 0.0f))
+    if (planesOnly || (silence && blockers.Object[b.Index] == silentObject) ||
+      (albedo[0] <= 0.0f && albedo[1] <= 0.0f && albedo[2] <= 0.0f))
     {
       continue;
     }

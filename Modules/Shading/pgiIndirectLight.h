@@ -62,11 +62,13 @@ struct PROXYGISHADING_EXPORT SecondaryLights
  */
 PROXYGISHADING_EXPORT void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   const Blockers& blockers, const std::vector<SeenBlocker>& seen, float visibilityDC,
-  const float n[3], float rgb[3], const float* planeScale = nullptr, bool planesOnly = false);
+  const float n[3], float rgb[3], const float* planeScale = nullptr, bool planesOnly = false,
+  int silentObject = -1);
 
 /// (planeScale: per plane and channel, see PlaneShadowScale; planesOnly: the
 /// spheres count for the overlap normalisation but emit nothing, for when
-/// they are spherical lights of the shadowed model.)
+/// they are spherical lights of the shadowed model; silentObject: the same
+/// for the spheres of that object, whose bounce the receiver has traced.)
 
 /**
  * How much of a plane's light reaches the part of it a receiver at p with

@@ -25,8 +25,9 @@ bool Blockers::AboveEveryPlane(const float p[3]) const
   return true;
 }
 
-void Blockers::AddSphere(float x, float y, float z, float r, const float* albedo)
+void Blockers::AddSphere(float x, float y, float z, float r, const float* albedo, int object)
 {
+  this->Object.push_back(object);
   this->X.push_back(x);
   this->Y.push_back(y);
   this->Z.push_back(z);
@@ -149,8 +150,24 @@ void VisitBlockers(const SoftShadowSettings& settings, bool ratios, const float 
 }
 } // namespace
 
+namespace
+{
+// Whether a precomputed log row adds anything (an all-zero row is V = 1).
+bool AnyNonZero(const float* v, int count)
+{
+  for (int i = 0; i < count; ++i)
+  {
+    if (v[i] != 0.0f)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+} // namespace
+
 int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& b, float* g,
-  sh::Status& status, std::vector<SeenBlocker>* seen) const
+  sh::Status& status, std::vector<SeenBlocker>* seen, const SelfVisibility& self) const
 {
   if (seen)
   {
@@ -163,10 +180,16 @@ int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& 
   sh::Fill(f, a2, 0.0f);
   status = sh::Status::Ok;
   int used = 0;
+  if (self.Log && AnyNonZero(self.Log, a2))
+  {
+    std::copy(self.Log, self.Log + a2, f);
+    ++used;
+  }
+  const bool skipOwn = self.Object >= 0 && b.Object.size() == b.X.size();
   VisitBlockers(this->Settings, !b.Ratio.empty() && acc == order, p, n, b,
     [&](int index, float theta, float dx, float dy, float dz, const float* ratio, bool inLog)
     {
-      if (inLog)
+      if (inLog && !(skipOwn && index >= 0 && b.Object[index] == self.Object))
       {
         tables.CapLog(theta, zh);
         if (ratio)
@@ -201,7 +224,8 @@ int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& 
 }
 
 void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, const Blockers& b,
-  float* g, sh::Status* status, int* used, std::vector<SeenBlocker>* seen) const
+  float* g, sh::Status* status, int* used, std::vector<SeenBlocker>* seen,
+  const SelfVisibility& self) const
 {
   const int order = this->Settings.Order, acc = this->AccOrder;
   const int n2 = sh::NumCoefficients(order), a2 = sh::NumCoefficients(acc);
@@ -209,8 +233,10 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
   {
     for (int i = 0; i < count; ++i)
     {
-      used[i] =
-        this->Visibility(&p[3 * i], &n[3 * i], b, &g[i * n2], status[i], seen ? &seen[i] : nullptr);
+      SelfVisibility mine = self;
+      mine.Log = self.Log ? &self.Log[i * a2] : nullptr;
+      used[i] = this->Visibility(
+        &p[3 * i], &n[3 * i], b, &g[i * n2], status[i], seen ? &seen[i] : nullptr, mine);
     }
     return;
   }
@@ -220,6 +246,7 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
   const bool ratios = !b.Ratio.empty() && acc == order;
   const float sinMin = std::sin(this->Settings.MinAngle);
   const int spheres = static_cast<int>(b.Spheres()), planes = static_cast<int>(b.Planes());
+  const bool skipOwn = self.Object >= 0 && b.Object.size() == b.X.size();
   alignas(64) float lanes[6 * W], theta[Rows * W], dx[Rows * W], dy[Rows * W], dz[Rows * W];
   alignas(64) float f[sh::MaxCoefficients * W], e[sh::MaxCoefficients * W];
   int laneUsed[W];
@@ -269,13 +296,33 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
       seen[first + k].clear();
     }
     std::fill(f, f + a2 * W, 0.0f);
+    for (int k = 0; self.Log && k < m; ++k)
+    {
+      const float* row = &self.Log[(first + k) * a2];
+      if (AnyNonZero(row, a2))
+      {
+        for (int j = 0; j < a2; ++j)
+        {
+          f[j * W + k] = row[j];
+        }
+        laneUsed[k] = 1;
+      }
+    }
     for (int s0 = 0; s0 < spheres; s0 += Rows)
     {
       const int rows = std::min(Rows, spheres - s0);
       detail::BlockerLanes(lanes, &b.X[s0], &b.Y[s0], &b.Z[s0], &b.R[s0], rows, sinMin,
         this->Settings.SelfShadowRules, theta, dx, dy, dz);
-      countUsed(rows);
       list(first, m, rows, s0, 1);
+      // The own object's spheres: listed, not accumulated.
+      for (int r = 0; skipOwn && r < rows; ++r)
+      {
+        if (b.Object[s0 + r] == self.Object)
+        {
+          std::fill(&theta[r * W], &theta[r * W] + W, -1.0f);
+        }
+      }
+      countUsed(rows);
       sh::BatchAddCaps(
         tables, acc, rows, theta, dx, dy, dz, ratios ? &b.Ratio[s0 * order] : nullptr, f);
     }
@@ -441,7 +488,8 @@ Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, cons
       stack.insert(stack.end(), h.Children[i].rbegin(), h.Children[i].rend());
       continue;
     }
-    cut.AddSphere(h.X[i], h.Y[i], h.Z[i], h.R[i], h.Albedo.empty() ? nullptr : &h.Albedo[3 * i]);
+    cut.AddSphere(h.X[i], h.Y[i], h.Z[i], h.R[i], h.Albedo.empty() ? nullptr : &h.Albedo[3 * i],
+      h.Object.empty() ? -1 : h.Object[i]);
     if (nodes)
     {
       nodes->push_back(i);

@@ -42,8 +42,12 @@ struct PROXYGISHADING_EXPORT Blockers
   std::vector<float> Ratio;
   /// RGB albedo per sphere (3 floats each), for indirect light; may stay empty.
   std::vector<float> Albedo;
+  /// Scene object per sphere (the proxies' "ObjectId"; -1: none), for
+  /// receivers that carry their own object's visibility (SelfVisibility).
+  std::vector<int> Object;
   std::vector<float> PlaneOrigin, PlaneNormal, PlaneAlbedo; // 3 floats each per plane
-  void AddSphere(float x, float y, float z, float r, const float* albedo = nullptr);
+  void AddSphere(
+    float x, float y, float z, float r, const float* albedo = nullptr, int object = -1);
   void AddPlane(const float origin[3], const float normal[3], const float* albedo = nullptr);
   std::size_t Spheres() const { return this->X.size(); }
   std::size_t Planes() const { return this->PlaneOrigin.size() / 3; }
@@ -77,6 +81,7 @@ struct PROXYGISHADING_EXPORT ProxyHierarchy
   std::vector<float> X, Y, Z, R;
   std::vector<float> Albedo; // 3 per node (parents: their leaves' mean), may be empty
   std::vector<int> Level, Parent;
+  std::vector<int> Object;                // scene object per node, may be empty (-1 each)
   std::vector<std::vector<int>> Children; // filled by Finish()
   std::vector<int> Roots;
   /// Builds children and roots from Parent; false if the links are broken.
@@ -111,12 +116,26 @@ struct SeenBlocker
   float Dir[3]; // unit, receiver -> centre (planes: -normal)
 };
 
+/**
+ * A receiver's own object's visibility, precomputed (vtkPGISelfVisibility):
+ * the spheres of Object are listed as seen (the indirect light still wants
+ * them) but not accumulated, and Log (accumulation order^2 floats per
+ * receiver, null: none) is added to the sum before the exp instead.
+ */
+struct SelfVisibility
+{
+  int Object = -1;
+  const float* Log = nullptr;
+};
+
 class PROXYGISHADING_EXPORT SoftShadows
 {
 public:
   explicit SoftShadows(const SoftShadowSettings& settings);
 
   int GetOrder() const { return this->Settings.Order; }
+  /// The order blockers are summed at (SelfVisibility::Log rows: its square).
+  int GetAccumulationOrder() const { return this->AccOrder; }
 
   /**
    * Visibility vector g (Order^2 floats) at receiver p with normal n.
@@ -125,7 +144,8 @@ public:
    * the blockers as this receiver sees them (for indirect light).
    */
   int Visibility(const float p[3], const float n[3], const Blockers& blockers, float* g,
-    sh::Status& status, std::vector<SeenBlocker>* seen = nullptr) const;
+    sh::Status& status, std::vector<SeenBlocker>* seen = nullptr,
+    const SelfVisibility& self = SelfVisibility()) const;
 
   /**
    * Visibility of `count` receivers against the same blockers: points p and
@@ -135,10 +155,12 @@ public:
    * are enabled and the accumulation order is at most 6; receivers one at a
    * time otherwise. `seen`, if given, is `count` lists that receive each
    * receiver's blockers as Visibility's `seen` does. Allocates nothing
-   * beyond those lists' growth.
+   * beyond those lists' growth. `self` applies to every receiver (its Log
+   * has `count` rows); a nonzero Log row counts as one blocker in `used`.
    */
   void VisibilityBatch(int count, const float* p, const float* n, const Blockers& blockers,
-    float* g, sh::Status* status, int* used, std::vector<SeenBlocker>* seen = nullptr) const;
+    float* g, sh::Status* status, int* used, std::vector<SeenBlocker>* seen = nullptr,
+    const SelfVisibility& self = SelfVisibility()) const;
 
 private:
   /// The window, applied to a visibility vector of the output order.

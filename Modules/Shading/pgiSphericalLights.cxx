@@ -135,8 +135,9 @@ ShadowedIndirect::ShadowedIndirect(
 
 bool ShadowedIndirect::ExitRadiance(const SphericalLights& lights, bool emitLights,
   const LocalEmitters* locals, const Blockers* planes, const float p[3], const float n[3],
-  float rgb[3], SphericalLightScratch& s, float* contributions) const
+  float rgb[3], SphericalLightScratch& s, float* contributions, int ownObject) const
 {
+  const bool skipOwn = ownObject >= 0 && lights.Object.size() == lights.Count();
   rgb[0] = rgb[1] = rgb[2] = 0.0f;
   if (contributions)
   {
@@ -152,7 +153,8 @@ bool ShadowedIndirect::ExitRadiance(const SphericalLights& lights, bool emitLigh
   {
     float c[3] = { lights.X[i], lights.Y[i], lights.Z[i] };
     float r = lights.R[i];
-    if (!(r > 0.0f) || (this->Settings.SelfShadowRules && !ReplaceBlocker(p, n, c, r)))
+    if (!(r > 0.0f) || (skipOwn && lights.Object[i] == ownObject) ||
+      (this->Settings.SelfShadowRules && !ReplaceBlocker(p, n, c, r)))
     {
       continue;
     }

@@ -160,10 +160,12 @@ public:
    * (emitting only). `planes` adds its planes as blockers. Returns false if
    * an exp failed (that SL is left out). `contributions`, if given, receives
    * each SL's share (R + G + B; lights.Count() values), for reflection ratios.
+   * The SLs of object `ownObject` (when >= 0) neither emit nor block: the
+   * receiver has its own object's bounce and visibility precomputed.
    */
   bool ExitRadiance(const SphericalLights& lights, bool emitLights, const LocalEmitters* locals,
     const Blockers* planes, const float p[3], const float n[3], float rgb[3],
-    SphericalLightScratch& scratch, float* contributions = nullptr) const;
+    SphericalLightScratch& scratch, float* contributions = nullptr, int ownObject = -1) const;
 
 private:
   SoftShadowSettings Settings;

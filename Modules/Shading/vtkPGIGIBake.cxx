@@ -190,6 +190,7 @@ bool vtkPGIGIBake::ReadBlockers()
     vtkDataArray* radius = proxies->GetPointData()->GetArray("Radius");
     vtkDataArray* level = proxies->GetPointData()->GetArray("Level");
     vtkDataArray* parent = proxies->GetPointData()->GetArray("Parent");
+    vtkDataArray* objectIds = proxies->GetPointData()->GetArray("ObjectId");
     b.UseHierarchy = this->Settings->GetHierarchyAngle() > 0.0 && level && parent;
     if (!radius)
     {
@@ -212,8 +213,10 @@ bool vtkPGIGIBake::ReadBlockers()
       }
       proxygi::AlbedoOf(proxies, albedoArray, i, fallback, albedo);
       const float a[3] = { float(albedo[0]), float(albedo[1]), float(albedo[2]) };
+      const int object = objectIds ? static_cast<int>(objectIds->GetTuple1(i)) : -1;
       if (b.UseHierarchy)
       {
+        b.Hierarchy.Object.push_back(object);
         b.Hierarchy.Albedo.insert(b.Hierarchy.Albedo.end(), a, a + 3);
         b.Hierarchy.X.push_back(float(c[0]));
         b.Hierarchy.Y.push_back(float(c[1]));
@@ -227,7 +230,7 @@ bool vtkPGIGIBake::ReadBlockers()
       {
         continue;
       }
-      b.SceneBlockers.AddSphere(float(c[0]), float(c[1]), float(c[2]), float(r), a);
+      b.SceneBlockers.AddSphere(float(c[0]), float(c[1]), float(c[2]), float(r), a, object);
       b.LeafIds.push_back(i);
     }
     if (!this->ProxyError.empty())

@@ -84,6 +84,7 @@ void vtkPGIGISettings::DeepCopy(vtkPGIGISettings* o)
   this->SetAccumulationOrder(o->AccumulationOrder);
   this->SetWindowSize(o->WindowSize);
   this->SetSelfShadowRules(o->SelfShadowRules);
+  this->SetSelfVisibility(o->SelfVisibility);
   this->SetMinBlockerAngle(o->MinBlockerAngle);
   this->SetHybridMaxNorm(o->HybridMaxNorm);
   this->SetRangeTolerance(o->RangeTolerance);
@@ -253,6 +254,12 @@ bool vtkPGIGISettings::Resolve(const Support& s, int planes, vtkPGIGISettings* e
     }
     e->SetLocalLights(false);
   }
+  if (!s.SelfVisibility)
+  {
+    // On by default and only meaningful with the arrays, which the backend
+    // does not read: it runs the rules, as its documentation says.
+    e->SetSelfVisibility(false);
+  }
   if (!s.ReceiverAlbedo)
   {
     const bool defaultAlbedo = this->DefaultAlbedo[0] == 0.8 && this->DefaultAlbedo[1] == 0.8 &&
@@ -276,6 +283,7 @@ void vtkPGIGISettings::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AccumulationOrder: " << this->AccumulationOrder << "\n";
   os << indent << "WindowSize: " << this->WindowSize << "\n";
   os << indent << "SelfShadowRules: " << this->SelfShadowRules << "\n";
+  os << indent << "SelfVisibility: " << this->SelfVisibility << "\n";
   os << indent << "MinBlockerAngle: " << this->MinBlockerAngle << "\n";
   os << indent << "HybridMaxNorm: " << this->HybridMaxNorm << "\n";
   os << indent << "RangeTolerance: " << this->RangeTolerance << "\n";

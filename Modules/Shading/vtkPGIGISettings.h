@@ -21,6 +21,7 @@
  * | AccumulationOrder | 0 (= Order) | accumulate higher, truncate after the exp |
  * | WindowSize | 0 (off) | cosine window h on the visibility; -1 = 2n |
  * | SelfShadowRules | on | SHEXP 6.2 replacement rules, made continuous |
+ * | SelfVisibility | on | traced own visibility (vtkPGISelfVisibility); CPU filter |
  * | MinBlockerAngle | 0.002 | radians; smaller blockers are skipped |
  * | HybridMaxNorm | 0 | HYB threshold; 0: sh::DefaultHybridMaxNorm(order) |
  * | RangeTolerance | 0.5 | sh::Exp's range guard; < 0 switches it off |
@@ -104,6 +105,9 @@ public:
   vtkSetMacro(SelfShadowRules, bool);
   vtkGetMacro(SelfShadowRules, bool);
   vtkBooleanMacro(SelfShadowRules, bool);
+  vtkSetMacro(SelfVisibility, bool);
+  vtkGetMacro(SelfVisibility, bool);
+  vtkBooleanMacro(SelfVisibility, bool);
   vtkSetClampMacro(MinBlockerAngle, double, 0.0, 0.5);
   vtkGetMacro(MinBlockerAngle, double);
   vtkSetClampMacro(HybridMaxNorm, double, 0.0, 10.0);
@@ -180,6 +184,7 @@ public:
     bool PlaneBounceShadows = true;
     unsigned PlaneBlockings = 0x3;
     bool LocalLights = true;
+    bool SelfVisibility = true; // receivers' SelfLogVisibility arrays
     bool ReceiverAlbedo = true; // DefaultAlbedo and AlbedoArrayName on receivers
     bool ExpGuards = true;      // HybridMaxNorm, RangeTolerance
   };
@@ -208,6 +213,7 @@ protected:
   int AccumulationOrder = 0;
   double WindowSize = 0.0;
   bool SelfShadowRules = true;
+  bool SelfVisibility = true;
   double MinBlockerAngle = 0.002;
   double HybridMaxNorm = 0.0;
   double RangeTolerance = 0.5;

@@ -7,6 +7,7 @@
 #include "pgiParallel.h"
 #include "pgiSHBatch.h"
 #include "pgiSHLightTables.h"
+#include "pgiSHRotation.h"
 #include "pgiSHSphericalLight.h"
 #include "pgiSHZonal.h"
 #include "pgiSRGB.h"
@@ -19,6 +20,7 @@
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
@@ -152,7 +154,240 @@ struct ShadeScratch
   std::vector<int> Used, BatchUsed;
   std::vector<vtkIdType> ByBlockers, Who;
   std::vector<long long> Key;
+  std::vector<float> BatchSelfLogs;
 };
+
+// The receivers' precomputed own visibility (vtkPGISelfVisibility), where
+// it still holds; Line says why it runs or not (empty: no such array).
+struct SelfVisibilityInput
+{
+  const float* Logs = nullptr; // rows of accumulation order^2 (may point into Rotated)
+  std::vector<float> Rotated;  // the logs turned with receivers moved rigidly
+  vtkDataArray* Objects = nullptr;
+  // The bounce off the object onto itself: receiver i gathers the exit
+  // radiance of Targets[Offsets[i] .. Offsets[i + 1]) with their Weights.
+  vtkIdTypeArray* Offsets = nullptr;
+  vtkIdTypeArray* Targets = nullptr;
+  vtkFloatArray* Weights = nullptr;
+  std::string Line;
+  // The receiver's own object (-1: none, the rules run).
+  int OwnObject(vtkIdType i) const
+  {
+    if (!this->Logs)
+    {
+      return -1;
+    }
+    const double id = this->Objects->GetTuple1(i);
+    return id >= 0.0 && id < (1 << 24) ? static_cast<int>(id) : -1;
+  }
+};
+
+// The bounce arrays (field data), checked once: every target a receiver.
+bool ValidBounce(vtkPolyData* receivers, SelfVisibilityInput& self)
+{
+  vtkFieldData* fd = receivers->GetFieldData();
+  auto* offsets = vtkIdTypeArray::SafeDownCast(fd->GetArray("SelfBounceOffsets"));
+  auto* targets = vtkIdTypeArray::SafeDownCast(fd->GetArray("SelfBounceTargets"));
+  auto* weights = vtkFloatArray::SafeDownCast(fd->GetArray("SelfBounceWeights"));
+  const vtkIdType n = receivers->GetNumberOfPoints();
+  if (!offsets || !targets || !weights || offsets->GetNumberOfTuples() != n + 1 ||
+    targets->GetNumberOfTuples() != weights->GetNumberOfTuples() || offsets->GetValue(0) != 0 ||
+    offsets->GetValue(n) != targets->GetNumberOfTuples())
+  {
+    return false;
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (offsets->GetValue(i + 1) < offsets->GetValue(i))
+    {
+      return false;
+    }
+  }
+  for (vtkIdType e = 0; e < targets->GetNumberOfTuples(); ++e)
+  {
+    const vtkIdType t = targets->GetValue(e);
+    if (t < 0 || t >= n || !(weights->GetValue(e) >= 0.0f) || !std::isfinite(weights->GetValue(e)))
+    {
+      return false;
+    }
+  }
+  self.Offsets = offsets;
+  self.Targets = targets;
+  self.Weights = weights;
+  return true;
+}
+
+// The rotation R and the largest residual |R (q - qc) + pc - p| of the best
+// rigid fit of the rest points q onto the points p (Kabsch, by SVD).
+double RigidFit(vtkPolyData* receivers, vtkDataArray* rest, double R[9])
+{
+  const vtkIdType n = receivers->GetNumberOfPoints();
+  double pc[3] = { 0, 0, 0 }, qc[3] = { 0, 0, 0 };
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3], q[3];
+    receivers->GetPoint(i, p);
+    rest->GetTuple(i, q);
+    for (int c = 0; c < 3; ++c)
+    {
+      pc[c] += p[c] / n;
+      qc[c] += q[c] / n;
+    }
+  }
+  double H[3][3] = {};
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3], q[3];
+    receivers->GetPoint(i, p);
+    rest->GetTuple(i, q);
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        H[a][b] += (q[a] - qc[a]) * (p[b] - pc[b]);
+      }
+    }
+  }
+  double U[3][3], w[3], VT[3][3];
+  vtkMath::SingularValueDecomposition3x3(H, U, w, VT); // U, VT proper rotations
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      R[3 * i + j] = VT[0][i] * U[j][0] + VT[1][i] * U[j][1] + VT[2][i] * U[j][2];
+    }
+  }
+  double residual = 0.0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3], q[3], d2 = 0.0;
+    receivers->GetPoint(i, p);
+    rest->GetTuple(i, q);
+    for (int a = 0; a < 3; ++a)
+    {
+      const double fitted = R[3 * a] * (q[0] - qc[0]) + R[3 * a + 1] * (q[1] - qc[1]) +
+        R[3 * a + 2] * (q[2] - qc[2]) + pc[a];
+      d2 += (fitted - p[a]) * (fitted - p[a]);
+    }
+    residual = std::max(residual, std::sqrt(d2));
+  }
+  return std::isfinite(residual) ? residual : VTK_DOUBLE_MAX;
+}
+
+SelfVisibilityInput FindSelfVisibility(vtkPolyData* receivers, bool wanted, int accOrder)
+{
+  SelfVisibilityInput self;
+  vtkPointData* pd = receivers->GetPointData();
+  vtkDataArray* logs = pd->GetArray("SelfLogVisibility");
+  if (!logs)
+  {
+    return self;
+  }
+  const int a2 = accOrder * accOrder;
+  auto* floats = vtkFloatArray::SafeDownCast(logs);
+  vtkDataArray* rest = pd->GetArray("SelfVisibilityRest");
+  vtkDataArray* objects = pd->GetArray("ObjectId");
+  const vtkIdType n = receivers->GetNumberOfPoints();
+  std::ostringstream line;
+  line << "self-visibility: ";
+  if (!wanted)
+  {
+    line
+      << "SelfVisibility off: the SelfLogVisibility array is not used; the self-shadow rules run";
+  }
+  else if (!floats || logs->GetNumberOfComponents() != a2 || logs->GetNumberOfTuples() != n)
+  {
+    line << "SelfLogVisibility has " << logs->GetNumberOfComponents()
+         << " components (float: " << (floats ? "yes" : "no") << "), the accumulation order "
+         << accOrder << " needs " << a2 << " floats: the self-shadow rules run";
+  }
+  else if (!objects || !rest || rest->GetNumberOfComponents() != 3)
+  {
+    line << "no ObjectId or SelfVisibilityRest array beside SelfLogVisibility: the self-shadow "
+            "rules run";
+  }
+  else if (!ValidBounce(receivers, self))
+  {
+    line << "SelfBounceOffsets, SelfBounceTargets and SelfBounceWeights (field data) are missing "
+            "or do not index these receivers: the self-shadow rules run";
+  }
+  else
+  {
+    // Moved or deformed since the trace: the stored visibility no longer holds.
+    double bounds[6];
+    receivers->GetBounds(bounds);
+    const double diagonal = std::sqrt(vtkMath::Distance2BetweenPoints(
+      std::array<double, 3>{ bounds[0], bounds[2], bounds[4] }.data(),
+      std::array<double, 3>{ bounds[1], bounds[3], bounds[5] }.data()));
+    const double tolerance = 1e-5 * std::max(diagonal, 1e-30);
+    double moved = 0.0;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double p[3], q[3];
+      receivers->GetPoint(i, p);
+      rest->GetTuple(i, q);
+      moved = std::max(moved, std::sqrt(vtkMath::Distance2BetweenPoints(p, q)));
+    }
+    double R[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+    const double residual = moved <= tolerance ? 0.0 : RigidFit(receivers, rest, R);
+    if (!(residual <= tolerance))
+    {
+      line << "the receivers moved or deformed since their visibility was traced (up to " << moved
+           << ", " << residual << " from the best rigid motion): the self-shadow rules run";
+    }
+    else
+    {
+      self.Logs = floats->GetPointer(0);
+      if (moved > tolerance)
+      {
+        // Moved rigidly: every log turns by R, one a2 x a2 matrix for all.
+        std::vector<double> M(static_cast<std::size_t>(a2) * a2), e(a2), column(a2);
+        for (int j = 0; j < a2; ++j)
+        {
+          std::fill(e.begin(), e.end(), 0.0);
+          e[j] = 1.0;
+          proxygi::sh::RotateSH(accOrder, R, e.data(), column.data());
+          for (int i = 0; i < a2; ++i)
+          {
+            M[i * a2 + j] = column[i];
+          }
+        }
+        self.Rotated.resize(static_cast<std::size_t>(a2) * n);
+        const float* logs0 = self.Logs;
+        float* out = self.Rotated.data();
+        vtkSMPTools::For(0, n,
+          [&](vtkIdType first, vtkIdType last)
+          {
+            for (vtkIdType v = first; v < last; ++v)
+            {
+              for (int i = 0; i < a2; ++i)
+              {
+                // Bands do not mix: only the row's own band is nonzero.
+                const int l = proxygi::sh::BandOf(i);
+                double sum = 0.0;
+                for (int j = l * l; j < (l + 1) * (l + 1); ++j)
+                {
+                  sum += M[i * a2 + j] * logs0[a2 * v + j];
+                }
+                out[a2 * v + i] = static_cast<float>(sum);
+              }
+            }
+          });
+        self.Logs = self.Rotated.data();
+        const double angle =
+          std::acos(std::max(-1.0, std::min(1.0, 0.5 * (R[0] + R[4] + R[8] - 1.0))));
+        line << "the receivers moved rigidly since the trace (turned "
+             << vtkMath::DegreesFromRadians(angle) << " degrees): their logs turned with them; ";
+      }
+      self.Objects = objects;
+      line << "precomputed (vtkPGISelfVisibility) on " << n
+           << " receivers: their own object's shadows and bounce onto itself (IndirectSelf) "
+              "from the traced mesh, their own proxies left out of both";
+    }
+  }
+  self.Line = line.str();
+  return self; // moved, so Logs still points into Rotated
+}
 } // namespace
 
 struct vtkPGIGlobalIllumination::ShadeBuffers
@@ -598,6 +833,14 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   proxygi::SoftShadowSettings logSettings = b.Kernel;
   logSettings.PlanesInLogSpace = true;
   const proxygi::SoftShadows shadowsLog(logSettings);
+  const int a2 = shadows.GetAccumulationOrder() * shadows.GetAccumulationOrder();
+  const SelfVisibilityInput self = needVisibility
+    ? FindSelfVisibility(receivers, settings->GetSelfVisibility(), shadows.GetAccumulationOrder())
+    : SelfVisibilityInput();
+  if (!self.Line.empty())
+  {
+    this->Plan.push_back(self.Line);
+  }
 
   // Last update's arrays when nobody else holds them: a repeated update
   // (proxies moving) allocates, and faults in, no new memory.
@@ -618,6 +861,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   vtkFloatArray* local = reuse(this->OutputArrays[3], "LocalLights", 3);
   vtkFloatArray* total = reuse(this->OutputArrays[4], "Radiance", 3);
   vtkFloatArray* visibility = reuse(this->OutputArrays[5], "Visibility", n2);
+  vtkFloatArray* indirectSelf = reuse(this->OutputArrays[6], "IndirectSelf", 3);
 
   std::atomic<vtkIdType> shadowed(0), failures(0), shadowedFailures(0);
   std::atomic<long long> secondPassNs(0), visibilityNs(0);
@@ -672,7 +916,11 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             facing[3 * j + c] = static_cast<float>(nd[c]);
           }
           const bool carries = planesInLight && blockers.AboveEveryPlane(&points[3 * j]);
-          key[j] = 2 * (cl.Of.empty() ? 0LL : static_cast<long long>(cl.Of[first + j])) +
+          // Batches share the cluster, the receivers' own object and the kernel.
+          const long long object = self.OwnObject(first + j) + 1;
+          key[j] = 2 *
+              ((cl.Of.empty() ? 0LL : static_cast<long long>(cl.Of[first + j])) * (1LL << 25) +
+                object) +
             (carries ? 1 : 0);
           byBlockers[j] = j;
           seens[j].clear();
@@ -693,6 +941,15 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             std::copy_n(&points[3 * byBlockers[j]], 3, &batchPoints[3 * j]);
             std::copy_n(&facing[3 * byBlockers[j]], 3, &batchFacing[3 * j]);
           }
+          std::vector<float>& batchSelfLogs = buffers.BatchSelfLogs;
+          if (self.Logs)
+          {
+            batchSelfLogs.resize(static_cast<std::size_t>(a2) * count);
+            for (vtkIdType j = 0; j < count; ++j)
+            {
+              std::copy_n(&self.Logs[a2 * (first + byBlockers[j])], a2, &batchSelfLogs[a2 * j]);
+            }
+          }
           for (vtkIdType start = 0; start < count;)
           {
             vtkIdType end = start + 1;
@@ -703,9 +960,16 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             const vtkIdType i = first + byBlockers[start];
             const proxygi::Blockers& mine = cl.Of.empty() ? blockers : cl.Blockers[cl.Of[i]];
             const proxygi::SoftShadows& kernel = key[byBlockers[start]] % 2 ? shadows : shadowsLog;
+            proxygi::SelfVisibility own;
+            const long long object = (key[byBlockers[start]] / 2) % (1LL << 25);
+            if (object > 0)
+            {
+              own.Object = static_cast<int>(object - 1);
+              own.Log = &batchSelfLogs[a2 * start];
+            }
             kernel.VisibilityBatch(static_cast<int>(end - start), &batchPoints[3 * start],
               &batchFacing[3 * start], mine, &batchVisibilities[n2 * start], &batchStatuses[start],
-              &batchUsed[start], wantSeen ? &batchSeens[start] : nullptr);
+              &batchUsed[start], wantSeen ? &batchSeens[start] : nullptr, own);
             start = end;
           }
           for (vtkIdType j = 0; j < count; ++j)
@@ -824,15 +1088,15 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             const bool scaled = scalePlanes && !planeScales.empty();
             proxygi::IndirectExitRadiance(indirectOperator, secondary, mine, seen, dc, nf,
               runIndirect ? bounce : planeBounce, scaled ? &planeScales[3 * j * planes] : nullptr,
-              !runIndirect);
+              !runIndirect, self.OwnObject(i)); // the own object's bounce: IndirectSelf
           }
           const proxygi::SphericalLights& myLights =
             cl.Lights.empty() ? shadowedLeaves : cl.Lights[cl.Of[i]];
           if (runShadowed)
           {
             const auto start = std::chrono::steady_clock::now();
-            if (!shadowedIndirect.ExitRadiance(
-                  myLights, true, nullptr, &blockers, p, nf, bounceShadowed, scratch))
+            if (!shadowedIndirect.ExitRadiance(myLights, true, nullptr, &blockers, p, nf,
+                  bounceShadowed, scratch, nullptr, self.OwnObject(i)))
             {
               ++localShadowedFailures;
             }
@@ -898,6 +1162,51 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
     vtkWarningMacro(<< failures
                     << " receivers met non-finite SH values; they were left unshadowed.");
   }
+  // The bounce off each object onto itself, from its traced mesh: its direct
+  // and local light where its rays hit it, once that is known everywhere.
+  indirectSelf->FillValue(0.0f);
+  if (self.Offsets && settings->GetIndirect() && !b.Dark && !this->GetAbortExecute())
+  {
+    const vtkIdType* offsets = self.Offsets->GetPointer(0);
+    const vtkIdType* targets = self.Targets->GetPointer(0);
+    const float* weights = self.Weights->GetPointer(0);
+    const float* lit = direct->GetPointer(0);
+    const float* locals = local->GetPointer(0);
+    vtkSMPTools::For(0, n,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType i = first; i < last; ++i)
+        {
+          if (self.OwnObject(i) < 0)
+          {
+            continue;
+          }
+          double sum[3] = { 0, 0, 0 }, albedo[3];
+          for (vtkIdType e = offsets[i]; e < offsets[i + 1]; ++e)
+          {
+            const vtkIdType t = targets[e];
+            for (int c = 0; c < 3; ++c)
+            {
+              sum[c] += weights[e] * (lit[3 * t + c] + locals[3 * t + c]);
+            }
+          }
+          proxygi::AlbedoOf(receivers, albedoArray, i, defaultAlbedo, albedo);
+          float* out = indirectSelf->GetPointer(3 * i);
+          float* all = total->GetPointer(3 * i);
+          for (int c = 0; c < 3; ++c)
+          {
+            out[c] = static_cast<float>(albedo[c] * sum[c]);
+            all[c] += out[c];
+          }
+        }
+      });
+    std::ostringstream line;
+    line << "indirect light (self): each object's bounce onto itself gathered from "
+         << self.Targets->GetNumberOfTuples() << " traced hits ("
+         << (n ? static_cast<double>(self.Targets->GetNumberOfTuples()) / n : 0.0)
+         << " per receiver)";
+    this->Plan.push_back(line.str());
+  }
   if (needVisibility)
   {
     std::ostringstream line;
@@ -916,6 +1225,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   output->GetPointData()->AddArray(indirectShadowed);
   output->GetPointData()->AddArray(local);
   output->GetPointData()->AddArray(total);
+  output->GetPointData()->AddArray(indirectSelf);
   // The picture the GPU paths draw, for colouring with Map Scalars off.
   if (!this->ColorArray || this->ColorArray->GetReferenceCount() > 1)
   {

@@ -9,17 +9,22 @@
  * vtkPGILighting (its environment is projected to SH once per change).
  * Infinite blocker planes (a ground) can be added with AddBlockerPlane.
  *
- * Output: the receivers with point arrays
- * | array | components | what |
- * |---|---|---|
- * | DirectShadowed | 3 | environment light through SH soft shadows (exit radiance) |
- * | IndirectProxy | 3 | one bounce from the proxies and blocker planes as secondary lights
- * (unshadowed, Sloan 2007) | | IndirectShadowed | 3 | one bounce from the proxies as spherical
- * lights, shadowed on both legs (Guerrero 2008) | | LocalLights | 3 | spherical and point lights of
- * the vtkPGILighting, shadowed by the same visibility | | Radiance | 3 | the sum of the effects
- * that ran | | Visibility | n^2 | the SH visibility vector (relight without recomputing) | |
- * RadianceSRGB | 3 (bytes) | ColorExposure x Radiance encoded sRGB: the picture the GPU
- * paths draw (in ParaView: colour by it with Map Scalars off) | and a
+ * Output: the receivers with point arrays (3 floats each unless said):
+ *  - DirectShadowed: environment light through SH soft shadows (exit radiance);
+ *  - IndirectProxy: one bounce from the proxies and blocker planes as
+ *    secondary lights (unshadowed, Sloan 2007);
+ *  - IndirectShadowed: one bounce from the proxies as spherical lights,
+ *    shadowed on both legs (Guerrero 2008);
+ *  - IndirectSelf: the bounce of an object onto itself, gathered from its
+ *    traced mesh (receivers with a self-visibility, below; else 0);
+ *  - LocalLights: spherical and point lights of the vtkPGILighting, shadowed
+ *    by the same visibility;
+ *  - Radiance: the sum of the effects that ran;
+ *  - Visibility (n^2): the SH visibility vector (relight without recomputing);
+ *  - RadianceSRGB (3 bytes): ColorExposure x Radiance encoded sRGB, the
+ *    picture the GPU paths draw (in ParaView: colour by it with Map Scalars
+ *    off);
+ * and a
  * field-data string array "Plan": which effects ran and why.
  *
  * The knobs are a vtkPGIGISettings (GetSettings; SetSettings shares one
@@ -28,6 +33,17 @@
  * The precompute (blockers, light, responses, local and spherical lights)
  * is a vtkPGIGIBake, reused while the proxies, lighting, planes and
  * settings are unchanged (GetBake()->GetNumberOfBuilds()).
+ *
+ * Rigid objects' own shadows, traced once: receivers that carry
+ * vtkPGISelfVisibility's arrays (SelfLogVisibility at the accumulation
+ * order, SelfVisibilityRest, ObjectId, the SelfBounce field arrays) take
+ * their own object's visibility from them, added in log space to the other
+ * objects' proxies, and their own object's bounce from the traced hits
+ * (IndirectSelf); the proxies whose ObjectId is theirs neither shadow them
+ * nor light them (they still dim the planes' light by their overlap). Where
+ * the points are no longer where they were traced (moved or deformed), the
+ * order differs, an array is missing or SelfVisibility is off, the
+ * self-shadow rules run, and the plan says why.
  *
  * Simulate only what the scene needs: shadows run only when there are
  * blockers; per receiver, the exp runs only when a blocker subtends more than
@@ -164,7 +180,7 @@ protected:
   // summed over threads), and the precompute's build count then.
   double StageMs[6] = {};
   // The output arrays, reused by the next update when nobody else holds them.
-  vtkSmartPointer<vtkFloatArray> OutputArrays[6];
+  vtkSmartPointer<vtkFloatArray> OutputArrays[7];
   vtkSmartPointer<vtkUnsignedCharArray> ColorArray;
   int BuildsSeen = -1;
 
