@@ -329,12 +329,12 @@ bool Occluded(const ReferenceTracer::Settings&, RTCScene scene, const double o[3
 // Internal tracing helpers live in a struct to reach private state.
 struct TracerAccess
 {
-  static bool Intersect(const ReferenceTracer::Internal& s, const double o[3], const double d[3],
-    Hit& hit, std::atomic<std::uint64_t>& rays)
+  // The first hit along o + t d, t > 0 (geomID invalid: none).
+  static void Cast(const ReferenceTracer::Internal& s, const double o[3], const double d[3],
+    RTCRayHit& rh, std::atomic<std::uint64_t>& rays)
   {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh;
     rh.ray.org_x = static_cast<float>(o[0]);
     rh.ray.org_y = static_cast<float>(o[1]);
     rh.ray.org_z = static_cast<float>(o[2]);
@@ -351,6 +351,13 @@ struct TracerAccess
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(s.Scene, &context, &rh);
     rays.fetch_add(1, std::memory_order_relaxed);
+  }
+
+  static bool Intersect(const ReferenceTracer::Internal& s, const double o[3], const double d[3],
+    Hit& hit, std::atomic<std::uint64_t>& rays)
+  {
+    RTCRayHit rh;
+    Cast(s, o, d, rh, rays);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
     {
       return false;
@@ -630,26 +637,9 @@ bool ReferenceTracer::HitVertices(
   const double x[3], const double n[3], const double d[3], unsigned ids[3], double weights[3]) const
 {
   const Internal& s = *this->Impl;
-  const double eps = s.Epsilon;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  const double o[3] = { x[0] + s.Epsilon * n[0], x[1] + s.Epsilon * n[1], x[2] + s.Epsilon * n[2] };
   RTCRayHit rh;
-  rh.ray.org_x = static_cast<float>(x[0] + eps * n[0]);
-  rh.ray.org_y = static_cast<float>(x[1] + eps * n[1]);
-  rh.ray.org_z = static_cast<float>(x[2] + eps * n[2]);
-  rh.ray.dir_x = static_cast<float>(d[0]);
-  rh.ray.dir_y = static_cast<float>(d[1]);
-  rh.ray.dir_z = static_cast<float>(d[2]);
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = std::numeric_limits<float>::infinity();
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.flags = 0;
-  rh.ray.time = 0.0f;
-  rh.ray.id = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(s.Scene, &context, &rh);
-  this->Rays.fetch_add(1, std::memory_order_relaxed);
+  TracerAccess::Cast(s, o, d, rh, this->Rays);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.geomID == s.SphereGeometry)
   {
     return false;

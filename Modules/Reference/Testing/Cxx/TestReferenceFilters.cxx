@@ -5,6 +5,7 @@
 #include "vtkPGIReferenceImage.h"
 
 #include "pgiTesting.h"
+#include "pgiTestingErrors.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -47,15 +48,6 @@ double ExactRadiance(const double x[3], double albedo)
   return albedo * (1.0 - 1.0 / d2 * c[2] / std::sqrt(d2));
 }
 
-bool Fails(vtkAlgorithm* algorithm)
-{
-  vtkNew<vtkTest::ErrorObserver> observer;
-  algorithm->AddObserver(vtkCommand::ErrorEvent, observer);
-  algorithm->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
-  algorithm->Modified();
-  algorithm->Update();
-  return observer->GetError();
-}
 } // namespace
 
 int TestReferenceFilters(int, char*[])
@@ -183,7 +175,7 @@ int TestReferenceFilters(int, char*[])
     vtkNew<vtkPolyData> empty;
     vtkNew<vtkPGIReferenceIllumination> r;
     r->SetInputData(empty);
-    PGI_CHECK(Fails(r));
+    PGI_CHECK(pgitest::Fails(r));
   }
   {
     vtkNew<vtkPolyData> nanMesh;
@@ -191,7 +183,7 @@ int TestReferenceFilters(int, char*[])
     nanMesh->GetPoints()->SetPoint(3, std::numeric_limits<double>::quiet_NaN(), 0, 0);
     vtkNew<vtkPGIReferenceIllumination> r;
     r->SetInputData(nanMesh);
-    PGI_CHECK(Fails(r));
+    PGI_CHECK(pgitest::Fails(r));
   }
   {
     // Points but no surfaces anywhere: an empty scene.
@@ -207,13 +199,13 @@ int TestReferenceFilters(int, char*[])
     cloud->GetPointData()->SetNormals(normals);
     vtkNew<vtkPGIReferenceIllumination> r;
     r->SetInputData(cloud);
-    PGI_CHECK(Fails(r));
+    PGI_CHECK(pgitest::Fails(r));
   }
   {
     vtkNew<vtkPGIReferenceIllumination> r;
     r->SetInputData(ground);
     r->UseProxiesOn(); // no proxies connected
-    PGI_CHECK(Fails(r));
+    PGI_CHECK(pgitest::Fails(r));
   }
   {
     vtkNew<vtkImageData> badSky;
@@ -224,12 +216,12 @@ int TestReferenceFilters(int, char*[])
     vtkNew<vtkPGIReferenceIllumination> r;
     r->SetInputData(ground);
     r->SetLighting(lighting);
-    PGI_CHECK(Fails(r));
+    PGI_CHECK(pgitest::Fails(r));
   }
   {
     vtkNew<vtkPGIReferenceImage> r;
     r->SetInputData(ground); // no camera
-    PGI_CHECK(Fails(r));
+    PGI_CHECK(pgitest::Fails(r));
   }
   {
     // Degenerate triangles are skipped and counted, not fatal.
@@ -240,7 +232,7 @@ int TestReferenceFilters(int, char*[])
     vtkNew<vtkPGIReferenceIllumination> r;
     r->SetInputData(degenerate);
     r->SetSamples(4);
-    PGI_CHECK(!Fails(r));
+    PGI_CHECK(!pgitest::Fails(r));
     PGI_CHECK(r->GetOutput()->GetFieldData()->GetArray("SkippedTriangles")->GetTuple1(0) >= 1);
   }
   return pgitest::Result();

@@ -7,6 +7,7 @@
 #include "pgiSHBasis.h"
 #include "pgiSHLog.h"
 #include "pgiTesting.h"
+#include "pgiTestingErrors.h"
 #include "vtkAppendPolyData.h"
 #include "vtkCylinderSource.h"
 #include "vtkDoubleArray.h"
@@ -28,16 +29,6 @@
 
 namespace
 {
-bool Fails(vtkAlgorithm* algorithm)
-{
-  vtkNew<vtkTest::ErrorObserver> observer;
-  algorithm->AddObserver(vtkCommand::ErrorEvent, observer);
-  algorithm->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
-  algorithm->Modified();
-  algorithm->Update();
-  return observer->GetError();
-}
-
 double FieldValue(vtkPolyData* data, const char* name)
 {
   vtkDataArray* a = data->GetFieldData()->GetArray(name);
@@ -221,18 +212,18 @@ int TestSelfVisibility(int, char*[])
     vtkNew<vtkPolyData> empty;
     vtkNew<vtkPGISelfVisibility> self;
     self->SetInputData(empty);
-    PGI_CHECK(Fails(self));
+    PGI_CHECK(pgitest::Fails(self));
     vtkNew<vtkPolyData> cloud;
     vtkNew<vtkPoints> points;
     points->InsertNextPoint(0, 0, 0);
     cloud->SetPoints(points);
     self->SetInputData(cloud);
-    PGI_CHECK(Fails(self));
+    PGI_CHECK(pgitest::Fails(self));
     vtkNew<vtkPolyData> bad;
     bad->DeepCopy(mesh);
     bad->GetPoints()->SetPoint(3, std::numeric_limits<double>::quiet_NaN(), 0, 0);
     self->SetInputData(bad);
-    PGI_CHECK(Fails(self));
+    PGI_CHECK(pgitest::Fails(self));
   }
   return pgitest::Result();
 }

@@ -7,6 +7,7 @@
 #include "vtkPGIGlobalIllumination.h"
 
 #include "pgiTesting.h"
+#include "pgiTestingErrors.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
@@ -37,15 +38,6 @@ double Shade(const SoftShadows& shadows, const Blockers& b, const float p[3], co
   return std::max(0.0f, sh::Dot(shadows.GetOrder() * shadows.GetOrder(), h, g));
 }
 
-bool Fails(vtkAlgorithm* a)
-{
-  vtkNew<vtkTest::ErrorObserver> observer;
-  a->AddObserver(vtkCommand::ErrorEvent, observer);
-  a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
-  a->Modified();
-  a->Update();
-  return observer->GetError();
-}
 } // namespace
 
 int TestSoftShadowsHardCases(int, char*[])
@@ -268,7 +260,7 @@ int TestSoftShadowsHardCases(int, char*[])
     receivers->GetPointData()->SetNormals(n);
     vtkNew<vtkPGIGlobalIllumination> gi;
     gi->SetInputData(receivers);
-    PGI_CHECK(Fails(gi));
+    PGI_CHECK(pgitest::Fails(gi));
     p->SetPoint(1, 1, 0, 0);
     p->Modified();
     vtkNew<vtkPolyData> proxies;
@@ -280,14 +272,14 @@ int TestSoftShadowsHardCases(int, char*[])
     r->InsertNextValue(std::numeric_limits<double>::quiet_NaN());
     proxies->GetPointData()->AddArray(r);
     gi->SetProxiesData(proxies);
-    PGI_CHECK(Fails(gi));
+    PGI_CHECK(pgitest::Fails(gi));
     r->SetValue(0, 0.5);
     r->Modified();
-    PGI_CHECK(!Fails(gi));
+    PGI_CHECK(!pgitest::Fails(gi));
     vtkNew<vtkPolyData> noRadius;
     noRadius->SetPoints(c);
     gi->SetProxiesData(noRadius);
-    PGI_CHECK(Fails(gi));
+    PGI_CHECK(pgitest::Fails(gi));
   }
   return pgitest::Result();
 }
