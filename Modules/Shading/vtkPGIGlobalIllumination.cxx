@@ -1165,7 +1165,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   // The bounce off each object onto itself, from its traced mesh: its direct
   // and local light where its rays hit it, once that is known everywhere.
   indirectSelf->FillValue(0.0f);
-  if (self.Offsets && settings->GetIndirect() && !b.Dark && !this->GetAbortExecute())
+  if (self.Logs && settings->GetIndirect() && !b.Dark && !this->GetAbortExecute())
   {
     const vtkIdType* offsets = self.Offsets->GetPointer(0);
     const vtkIdType* targets = self.Targets->GetPointer(0);

@@ -199,6 +199,7 @@ int TestGISelfVisibility(int, char*[])
     auto deformed = shade(moved, true);
     auto deformedRules = shade(movedBare, true);
     PGI_CHECK(PlanSays(deformed, "moved or deformed"));
+    PGI_CHECK(!PlanSays(deformed, "indirect light (self)"));
     PGI_CHECK(Same(deformed->GetOutput()->GetPointData()->GetArray("Radiance"),
       deformedRules->GetOutput()->GetPointData()->GetArray("Radiance")));
   }
