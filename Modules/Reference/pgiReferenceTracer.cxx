@@ -625,14 +625,6 @@ void ReferenceTracer::EstimateRadianceAlongRay(const double origin[3], const dou
   }
 }
 
-bool ReferenceTracer::Occluded(const double x[3], const double n[3], const double d[3]) const
-{
-  const double eps = this->Impl->Epsilon;
-  const double o[3] = { x[0] + eps * n[0], x[1] + eps * n[1], x[2] + eps * n[2] };
-  return proxygi::Occluded(
-    Settings(), this->Impl->Scene, o, d, std::numeric_limits<double>::infinity(), this->Rays);
-}
-
 bool ReferenceTracer::HitVertices(
   const double x[3], const double n[3], const double d[3], unsigned ids[3], double weights[3]) const
 {

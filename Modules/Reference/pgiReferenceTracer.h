@@ -100,16 +100,11 @@ public:
     std::uint64_t stream, const Settings& settings, RadianceEstimate& out) const;
 
   /**
-   * Whether the ray from x (offset along the unit normal n by the scene's
-   * ray epsilon) in unit direction d hits anything: one occlusion ray.
-   * For visibility precomputes (vtkPGISelfVisibility).
-   */
-  bool Occluded(const double x[3], const double n[3], const double d[3]) const;
-
-  /**
-   * The same ray's first hit on a mesh: the mesh's point ids of the hit
-   * triangle (as AddMesh numbered them) and their barycentric weights.
-   * False for a miss or a hit on a sphere.
+   * The first hit on a mesh of the ray from x (offset along the unit normal
+   * n by the scene's ray epsilon) in unit direction d: the mesh's point ids
+   * of the hit triangle (as AddMesh numbered them) and their barycentric
+   * weights. False for a miss or a hit on a sphere. For visibility
+   * precomputes (vtkPGISelfVisibility).
    */
   bool HitVertices(const double x[3], const double n[3], const double d[3], unsigned ids[3],
     double weights[3]) const;

@@ -6,7 +6,7 @@
  *
  * Bounding spheres shadow an object too much where they stand in for its own
  * surface; the object's own mesh shadows it exactly. Per vertex this filter
- * traces Samples occlusion rays over the hemisphere around the normal
+ * traces Samples rays over the hemisphere around the normal
  * (spherical Fibonacci directions, turned about the normal by a random angle
  * per vertex) against the input mesh alone. The visibility V is 1 below the
  * tangent plane (the self-shadow rules' convention: the object's back is not

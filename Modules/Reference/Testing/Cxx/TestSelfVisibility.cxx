@@ -11,7 +11,6 @@
 #include "vtkAppendPolyData.h"
 #include "vtkCylinderSource.h"
 #include "vtkDoubleArray.h"
-#include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
@@ -22,7 +21,6 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
 #include "vtkSphereSource.h"
-#include "vtkTestErrorObserver.h"
 
 #include <cmath>
 #include <limits>

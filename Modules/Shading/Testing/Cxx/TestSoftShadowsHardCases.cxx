@@ -10,13 +10,11 @@
 #include "pgiTestingErrors.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
-#include "vtkExecutive.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkTestErrorObserver.h"
 
 #include <algorithm>
 #include <cmath>
