@@ -117,6 +117,15 @@ check vertex changes --indirect unshadowed
 check gpu changes --indirect shadowed
 check image-space 'says:^not honoured: IndirectMode: shadowed' --indirect shadowed
 check vertex changes --hierarchy 0
+check vertex changes --self-visibility 0
+check gpu 'says:^note: --self-visibility does not apply to --mode gpu' --self-visibility 0
+check vertex changes --bright-lights off
+check vertex changes --bright-shadows proxies
+check vertex changes --bright-rays 4
+check gpu 'says:^note: --bright-lights does not apply to --mode gpu' --bright-lights off
+check image-space 'says:^note: --bright-shadows does not apply to --mode image-space' \
+  --bright-shadows proxies
+check gpu 'says:^note: --bright-rays does not apply to --mode gpu' --bright-rays 4
 check gpu 'says:^not honoured: HierarchyAngle' --hierarchy 25
 check image-space 'says:^not honoured: HierarchyAngle' --hierarchy 25
 check vertex 'says:^note: --scale does not apply to --mode vertex' --scale 4

@@ -60,6 +60,12 @@ an option a mode has no use for as "note: ... does not apply".
                       per vertex, traced once and cached (vtkPGISelfVisibility),
                       instead of its own proxies under the self-shadow rules
                       (default 256; 0: the rules)
+  --bright-lights on|off  vertex mode: the map's compact peaks (a sun, lamps)
+                      taken out as distant lights with their own sharp shadows
+                      (default on; the plan says what was taken and why)
+  --bright-shadows R  their shadows: rays (default: against the scene's meshes,
+                      Embree) or proxies (the light's cone against the spheres)
+  --bright-rays N     rays per light and vertex (default 16: the penumbra)
   --size WxH          image size (default: the scene's)
   --reference-spp N   samples per vertex of the reference (default 1024)
   --exposure E        tone-mapping scale (default: 95th percentile to 0.8)

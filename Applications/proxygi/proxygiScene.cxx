@@ -16,6 +16,7 @@
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGIImageSpaceGIPass.h"
 #include "vtkPGILighting.h"
+#include "vtkPGIOccluder.h"
 #include "vtkPGIReferenceImage.h"
 
 #include <vtkActor.h>
@@ -68,6 +69,8 @@ struct RenderOptions
   std::string AutoReason; // why --mode auto chose Mode
   int Order = 4, Spheres = 64, ReferenceSpp = 1024, ReceiverScale = 2, PixelSpp = 256;
   int SelfVisibility = 256; // rays per vertex of the meshes' own visibility; 0: the rules
+  std::string BrightLights = "on", BrightShadows = "rays";
+  int BrightRays = 16;
   int ExpMethod = vtkPGIGISettings::EXP_HYB;
   std::string MethodName = "HYB", IndirectName = "shadowed";
   double HierarchyAngle = 25.0, Exposure = 0.0;
@@ -111,6 +114,9 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   o.HierarchyAngle = NumberOption(args, "--hierarchy", o.Mode == "vertex" ? 25.0 : 0.0, ok);
   o.ReceiverScale = static_cast<int>(NumberOption(args, "--scale", 2, ok));
   o.SelfVisibility = static_cast<int>(NumberOption(args, "--self-visibility", 256, ok));
+  o.BrightLights = Option(args, "--bright-lights", "on");
+  o.BrightShadows = Option(args, "--bright-shadows", "rays");
+  o.BrightRays = static_cast<int>(NumberOption(args, "--bright-rays", 16, ok));
   o.PixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
   o.Exposure = NumberOption(args, "--exposure", 0.0, ok);
   o.Output = Option(args, "-o", "proxygi-render.png");
@@ -132,11 +138,15 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   if ((!o.Gpu() && !o.Vertex() && !o.ImageSpace()) ||
     (o.ReceiverScale != 1 && o.ReceiverScale != 2 && o.ReceiverScale != 4 &&
       o.ReceiverScale != 8) ||
-    o.PixelSpp < 1 || o.SelfVisibility < 0 || o.SelfVisibility > 65536)
+    o.PixelSpp < 1 || o.SelfVisibility < 0 || o.SelfVisibility > 65536 ||
+    (o.BrightLights != "on" && o.BrightLights != "off") ||
+    (o.BrightShadows != "rays" && o.BrightShadows != "proxies") || o.BrightRays < 1 ||
+    o.BrightRays > 256)
   {
     vtkLogF(ERROR,
       "proxygi render: --mode gpu|vertex|image-space, --scale 1|2|4|8, "
-      "--pixel-reference-spp >= 1, 0 <= --self-visibility <= 65536");
+      "--pixel-reference-spp >= 1, 0 <= --self-visibility <= 65536, --bright-lights on|off, "
+      "--bright-shadows rays|proxies, 1 <= --bright-rays <= 256");
     return false;
   }
   if (o.IndirectName != "shadowed" && o.IndirectName != "unshadowed" && o.IndirectName != "off")
@@ -171,6 +181,10 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   if (!o.Vertex())
   {
     notFor("--self-visibility", "the GPU backends run the self-shadow rules");
+    const char* sh = "the GPU backends keep the whole map in the SH";
+    notFor("--bright-lights", sh);
+    notFor("--bright-shadows", sh);
+    notFor("--bright-rays", sh);
   }
   if (o.ImageSpace())
   {
@@ -203,6 +217,8 @@ vtkSmartPointer<vtkPGIGISettings> MakeSettings(
       ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
       : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
   settings->SetHierarchyAngle(o.HierarchyAngle);
+  settings->SetBrightLights(o.BrightLights == "on");
+  settings->SetBrightLightRays(o.BrightRays);
   SetBackendPlaneDefaults(settings, o.Mode);
   return settings;
 }
@@ -227,7 +243,8 @@ vtkSmartPointer<vtkPGIGISettings> ReportSettings(vtkPGIGISettings* settings, con
 // The CPU filter on every object (--mode vertex).
 std::vector<vtkSmartPointer<vtkPolyData>> ShadeOnCPU(
   const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, vtkPGIGISettings* settings,
-  const SceneDescription& scene, const LoadedScene& loaded, const SceneProxies& proxies)
+  const SceneDescription& scene, const LoadedScene& loaded, const SceneProxies& proxies,
+  vtkPGIOccluder* occluder)
 {
   std::vector<vtkSmartPointer<vtkPolyData>> shaded;
   for (auto& object : receivers)
@@ -236,6 +253,7 @@ std::vector<vtkSmartPointer<vtkPolyData>> ShadeOnCPU(
     gi->SetInputData(object);
     ConfigureGlobalIllumination(gi, scene, loaded, proxies);
     gi->SetSettings(settings);
+    gi->SetOccluder(occluder);
     gi->Update();
     shaded.push_back(gi->GetOutput());
     if (shaded.size() == 1)
@@ -375,7 +393,10 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   std::vector<vtkSmartPointer<vtkPolyData>> shaded;
   if (o.Vertex())
   {
-    shaded = ShadeOnCPU(receiversIn, settings, scene, loaded, proxies);
+    // The bright lights' shadows from the real meshes, as the reference's.
+    vtkSmartPointer<vtkPGIOccluder> occluder =
+      o.BrightShadows == "rays" ? SceneOccluder(receiversIn) : nullptr;
+    shaded = ShadeOnCPU(receiversIn, settings, scene, loaded, proxies, occluder);
   }
   auto t2 = Clock::now();
   double exposure = o.Exposure;

@@ -69,10 +69,12 @@ public:
   /// Mean radiance over the sphere (solid-angle weighted).
   void Mean(double rgb[3]) const;
 
-private:
-  void BuildSampler();
+  /// World space to map space and back (the rotation about +z).
   void ToMap(const double world[3], double map[3]) const;
   void ToWorld(const double map[3], double world[3]) const;
+
+private:
+  void BuildSampler();
 
   int Width = 0, Height = 0;
   double Rotation = 0.0, CosR = 1.0, SinR = 0.0;

@@ -625,6 +625,32 @@ void ReferenceTracer::EstimateRadianceAlongRay(const double origin[3], const dou
   }
 }
 
+void ReferenceTracer::OccludedRays(int count, const float* origins, const float* directions,
+  float tnear, unsigned char* blocked) const
+{
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (int i = 0; i < count; ++i)
+  {
+    RTCRay ray;
+    ray.org_x = origins[3 * i];
+    ray.org_y = origins[3 * i + 1];
+    ray.org_z = origins[3 * i + 2];
+    ray.dir_x = directions[3 * i];
+    ray.dir_y = directions[3 * i + 1];
+    ray.dir_z = directions[3 * i + 2];
+    ray.tnear = tnear;
+    ray.tfar = std::numeric_limits<float>::infinity();
+    ray.mask = 0xFFFFFFFFu;
+    ray.flags = 0;
+    ray.time = 0.0f;
+    ray.id = 0;
+    rtcOccluded1(this->Impl->Scene, &context, &ray);
+    blocked[i] = ray.tfar < 0.0f ? 1 : 0;
+  }
+  this->Rays.fetch_add(static_cast<std::uint64_t>(count), std::memory_order_relaxed);
+}
+
 bool ReferenceTracer::HitVertices(
   const double x[3], const double n[3], const double d[3], unsigned ids[3], double weights[3]) const
 {

@@ -109,6 +109,14 @@ public:
   bool HitVertices(const double x[3], const double n[3], const double d[3], unsigned ids[3],
     double weights[3]) const;
 
+  /**
+   * Shadow rays: for `count` rays from origins along unit directions (3
+   * floats each), blocked[i] = 1 when anything lies beyond tnear. For the
+   * GI filter's bright lights (vtkPGIMeshOccluder). Thread-safe.
+   */
+  void OccludedRays(int count, const float* origins, const float* directions, float tnear,
+    unsigned char* blocked) const;
+
   /// Albedo and geometric normal of the first hit along a ray, for tests.
   bool FirstHit(const double origin[3], const double direction[3], double& t, double normal[3],
     float albedo[3]) const;

@@ -142,6 +142,7 @@ vtkPGIGISettings::Support KernelSupport(const char* backend, int maxOrder)
   s.ShadingPaths = 1u << vtkPGIGISettings::SHADING_PRODUCT_MATRIX;
   s.Hierarchy = false;
   s.SelfVisibility = false;
+  s.BrightLights = false;
   s.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
   return s;
 }

@@ -3,6 +3,7 @@
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
+#include "vtkPGIMeshOccluder.h"
 #include "vtkPGIReferenceIllumination.h"
 #include "vtkPGISelfVisibility.h"
 #include "vtkPGISphereHierarchy.h"
@@ -299,6 +300,17 @@ void ConfigureSettings(vtkPGIGISettings* settings, const SceneDescription& scene
   settings->SetShadows(scene.Shadows);
   settings->SetIndirect(scene.Indirect);
   settings->SetLocalLights(scene.LocalLights);
+}
+
+vtkSmartPointer<vtkPGIOccluder> SceneOccluder(
+  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers)
+{
+  auto occluder = vtkSmartPointer<vtkPGIMeshOccluder>::New();
+  for (const auto& mesh : receivers)
+  {
+    occluder->AddMesh(mesh);
+  }
+  return occluder;
 }
 
 bool AddSelfVisibility(const SceneDescription& scene,

@@ -20,6 +20,7 @@
 class vtkAlgorithm;
 class vtkPGIGISettings;
 class vtkPGIGlobalIllumination;
+class vtkPGIOccluder;
 class vtkPolyData;
 
 namespace proxygi
@@ -74,6 +75,14 @@ PROXYGISCENESETUP_EXPORT bool AddSelfVisibility(const SceneDescription& scene,
   std::vector<vtkSmartPointer<vtkPolyData>>& receivers, int order, int samples,
   const std::string& cacheDir, double& seconds, std::string& error,
   SetupMonitor* monitor = nullptr);
+
+/**
+ * The scene's meshes (every receiver: meshes, planes and spheres as drawn)
+ * as an occluder for the GI filter's bright lights (vtkPGIMeshOccluder,
+ * Embree): their shadows come from the real geometry, as the reference's.
+ */
+PROXYGISCENESETUP_EXPORT vtkSmartPointer<vtkPGIOccluder> SceneOccluder(
+  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers);
 
 /// The scene's effect switches (shadows, indirect, local lights) on GI
 /// settings; the knobs (order, method, ...) are left to the caller.

@@ -282,6 +282,9 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting, proxygi::BakedScene& p
   key.Path = this->Settings->GetShadingPath();
   key.PlaneBlocking = this->Settings->GetPlaneBlocking();
   key.Planes = this->Planes;
+  key.Bright = { this->Settings->GetBrightLights() ? 1.0 : 0.0,
+    this->Settings->GetBrightLightFraction(),
+    static_cast<double>(this->Settings->GetBrightLightCount()) };
   if (key == this->LastLight && previous.Shading)
   {
     // Only the proxies or the kernel's knobs changed: the light stands.
@@ -291,6 +294,11 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting, proxygi::BakedScene& p
     b.LightAbovePlanes = std::move(previous.LightAbovePlanes);
     b.PlaneVisibility = std::move(previous.PlaneVisibility);
     b.Shading = std::move(previous.Shading);
+    b.BounceOpenShading = std::move(previous.BounceOpenShading);
+    b.BounceShading = std::move(previous.BounceShading);
+    b.BrightLights = std::move(previous.BrightLights);
+    b.BrightestFraction = previous.BrightestFraction;
+    b.BrightFraction = previous.BrightFraction;
     b.Secondary = std::move(previous.Secondary);
     b.InterleavedResponse = std::move(previous.InterleavedResponse);
     b.Dark = previous.Dark;
@@ -308,7 +316,22 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting, proxygi::BakedScene& p
 void vtkPGIGIBake::ProjectEnvironment(const proxygi::EnvironmentMap& map)
 {
   proxygi::BakedScene& b = this->Scene;
-  const proxygi::EnvironmentMap* environment = &map;
+  // The peaks are looked for even when switched off: the plan says what the
+  // SH then carries.
+  proxygi::BrightLightOptions options;
+  options.MaxLights = std::max(1, this->Settings->GetBrightLightCount());
+  options.MinFraction = this->Settings->GetBrightLightFraction();
+  proxygi::BrightLightResult bright;
+  proxygi::ExtractBrightLights(map, options, bright);
+  b.BrightestFraction = bright.BrightestFraction;
+  const bool takeOut = this->Settings->GetBrightLights() &&
+    this->Settings->GetBrightLightCount() > 0 && !bright.Lights.empty();
+  if (takeOut)
+  {
+    b.BrightLights = bright.Lights;
+    b.BrightFraction = bright.ExtractedFraction;
+  }
+  const proxygi::EnvironmentMap* environment = takeOut ? &bright.Residual : &map;
   const int order = b.Order, n2 = order * order;
   b.Light.assign(3 * static_cast<std::size_t>(n2), 0.0);
   environment->ProjectSH(order, &b.Light[0], &b.Light[n2], &b.Light[2 * n2]);
@@ -332,6 +355,28 @@ void vtkPGIGIBake::ProjectEnvironment(const proxygi::EnvironmentMap& map)
   }
   b.Shading =
     std::make_shared<proxygi::EnvironmentShading>(order, above, above + n2, above + 2 * n2, path);
+  b.BounceOpenShading = b.OpenShading;
+  b.BounceShading = b.Shading;
+  std::vector<double> bounceAbove;
+  if (takeOut)
+  {
+    // The bounce sees the whole map.
+    std::vector<double> whole(3 * static_cast<std::size_t>(n2), 0.0);
+    map.ProjectSH(order, &whole[0], &whole[n2], &whole[2 * n2]);
+    b.BounceOpenShading = std::make_shared<proxygi::EnvironmentShading>(
+      order, &whole[0], &whole[n2], &whole[2 * n2], path);
+    bounceAbove = whole;
+    if (b.PlanesInLight)
+    {
+      std::vector<double> unused(n2);
+      proxygi::LightAbovePlanes(map, order, b.SceneBlockers.PlaneNormal.data(),
+        static_cast<int>(b.SceneBlockers.Planes()), &bounceAbove[0], &bounceAbove[n2],
+        &bounceAbove[2 * n2], unused.data());
+    }
+    b.BounceShading = std::make_shared<proxygi::EnvironmentShading>(
+      order, &bounceAbove[0], &bounceAbove[n2], &bounceAbove[2 * n2], path);
+    above = bounceAbove.data();
+  }
   b.Secondary = std::make_shared<proxygi::SecondaryLights>(
     order, above, above + n2, above + 2 * n2, b.PlanesInLight ? nullptr : &b.SceneBlockers);
   b.InterleavedResponse.resize(3 * static_cast<std::size_t>(n2));
@@ -394,6 +439,33 @@ void vtkPGIGIBake::PlanEffects(vtkPGILighting* lighting)
       << (s->GetShadingPath() == vtkPGIGISettings::SHADING_TABLE ? "tabulated L*H(N)"
                                                                  : "product matrix M_L");
   b.Plan.push_back(env.str());
+  b.RunBrightLights = !b.BrightLights.empty() && !b.Dark;
+  {
+    std::ostringstream line;
+    line.precision(3);
+    const double min = s->GetBrightLightFraction();
+    if (b.RunBrightLights)
+    {
+      line << "bright lights: " << b.BrightLights.size() << " taken out of the map ("
+           << 100.0 * b.BrightFraction << "% of its power; half-angles";
+      for (const proxygi::DistantLight& l : b.BrightLights)
+      {
+        line << " " << l.HalfAngle * 180.0 / 3.14159265358979323846 << " deg";
+      }
+      line << "), each with its own shadows; the SH carries the rest, the bounce the whole map";
+    }
+    else if (!s->GetBrightLights() || s->GetBrightLightCount() == 0)
+    {
+      line << "bright lights: off; the map's brightest compact peak holds "
+           << 100.0 * b.BrightestFraction << "% of its power, carried by the SH";
+    }
+    else
+    {
+      line << "bright lights: none (the brightest compact peak holds "
+           << 100.0 * b.BrightestFraction << "% of the map's power, under " << 100.0 * min << "%)";
+    }
+    b.Plan.push_back(line.str());
+  }
   if (!s->GetShadows())
   {
     b.Plan.push_back("shadows: off (switched off)");
@@ -483,8 +555,8 @@ bool vtkPGIGIBake::PrepareSphericalLights()
   const std::string why =
     proxygi::PrepareSphericalLights(this->Proxies, b.UseHierarchy ? allIds : b.LeafIds,
       b.UseHierarchy ? this->Proxies->GetPointData()->GetArray("Level") : nullptr, b.Order,
-      s->GetAlbedoArrayName(), s->GetDefaultProxyAlbedo(), *b.Shading, b.Dark, b.SceneBlockers,
-      b.Locals.Count() ? &b.Locals : nullptr, kernel, b.Lights, summary, bad);
+      s->GetAlbedoArrayName(), s->GetDefaultProxyAlbedo(), *b.BounceShading, b.Dark,
+      b.SceneBlockers, b.Locals.Count() ? &b.Locals : nullptr, kernel, b.Lights, summary, bad);
   if (!bad.empty())
   {
     this->Error = bad;

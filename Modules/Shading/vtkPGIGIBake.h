@@ -22,6 +22,13 @@
  * PlanEffects (what the scene needs, one plan line per decision),
  * PrepareLocalLights, PrepareSphericalLights (the shadowed bounce's first
  * pass).
+ *
+ * Bright lights (settings BrightLights): ProjectLight takes the map's
+ * compact peaks out (pgiBrightLights.h). The direct light's SH (Light,
+ * Shading, OpenShading) is then the residual's; the bounce keeps the whole
+ * map (BounceShading, BounceOpenShading, Secondary, the spherical lights'
+ * first pass), where a blurred sun costs little; the consumer shades the
+ * lights themselves with their own shadows (pgiBrightLightShadows.h).
  */
 #ifndef vtkPGIGIBake_h
 #define vtkPGIGIBake_h
@@ -31,6 +38,7 @@
 #include "vtkPGIGISettings.h"
 #include "vtkSmartPointer.h"
 
+#include "pgiBrightLights.h"
 #include "pgiEnvironmentShading.h"
 #include "pgiIndirectLight.h"
 #include "pgiSoftShadows.h"
@@ -68,6 +76,13 @@ struct PROXYGISHADING_EXPORT BakedScene
   /// Shading of L (receivers without shadows or under a plane) and of the
   /// light above the planes.
   std::shared_ptr<const EnvironmentShading> OpenShading, Shading;
+  /// The same for the bounce: the whole map, bright lights included (the
+  /// same objects as OpenShading and Shading when none were taken out).
+  std::shared_ptr<const EnvironmentShading> BounceOpenShading, BounceShading;
+  /// The bright lights taken out of the map (L is the residual), the share
+  /// of the map's power in its brightest compact peak and in those taken.
+  std::vector<DistantLight> BrightLights;
+  double BrightestFraction = 0.0, BrightFraction = 0.0;
   std::shared_ptr<const SecondaryLights> Secondary;
   /// The response interleaved (RGB per coefficient), as the GLSL reads it.
   std::vector<float> InterleavedResponse;
@@ -83,7 +98,7 @@ struct PROXYGISHADING_EXPORT BakedScene
   // What the scene needs.
   bool AnyBlockers = false, AnyAlbedo = false, PlanesReflect = false, Dark = false;
   bool RunShadows = false, RunIndirect = false, RunPlaneBounce = false, RunShadowed = false,
-       RunLocal = false, NeedVisibility = false;
+       RunLocal = false, RunBrightLights = false, NeedVisibility = false;
   /// One line per decision.
   std::vector<std::string> Plan;
 
@@ -185,10 +200,12 @@ protected:
     vtkMTimeType Time = 0;
     int Order = 0, Path = -1, PlaneBlocking = -1;
     std::vector<double> Planes;
+    std::vector<double> Bright; // on, fraction, count
     bool operator==(const LightKey& o) const
     {
       return this->Environment == o.Environment && this->Time == o.Time && this->Order == o.Order &&
-        this->Path == o.Path && this->PlaneBlocking == o.PlaneBlocking && this->Planes == o.Planes;
+        this->Path == o.Path && this->PlaneBlocking == o.PlaneBlocking &&
+        this->Planes == o.Planes && this->Bright == o.Bright;
     }
   };
   LightKey LastLight;

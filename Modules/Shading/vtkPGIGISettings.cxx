@@ -98,6 +98,10 @@ void vtkPGIGISettings::DeepCopy(vtkPGIGISettings* o)
   this->SetPlaneBounceShadows(o->PlaneBounceShadows);
   this->SetPlaneBlocking(o->PlaneBlocking);
   this->SetLocalLights(o->LocalLights);
+  this->SetBrightLights(o->BrightLights);
+  this->SetBrightLightFraction(o->BrightLightFraction);
+  this->SetBrightLightCount(o->BrightLightCount);
+  this->SetBrightLightRays(o->BrightLightRays);
   this->SetDefaultAlbedo(o->DefaultAlbedo);
   this->SetDefaultProxyAlbedo(o->DefaultProxyAlbedo);
   this->SetAlbedoArrayName(o->AlbedoArrayName);
@@ -254,6 +258,12 @@ bool vtkPGIGISettings::Resolve(const Support& s, int planes, vtkPGIGISettings* e
     }
     e->SetLocalLights(false);
   }
+  if (!s.BrightLights)
+  {
+    // On by default: the backend keeps the whole map in the SH, and its
+    // plan says how much of the light was in peaks.
+    e->SetBrightLights(false);
+  }
   if (!s.SelfVisibility)
   {
     // On by default and only meaningful with the arrays, which the backend
@@ -298,6 +308,9 @@ void vtkPGIGISettings::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PlaneBounceShadows: " << this->PlaneBounceShadows << "\n";
   os << indent << "PlaneBlocking: " << PlaneBlockingName(this->PlaneBlocking) << "\n";
   os << indent << "LocalLights: " << this->LocalLights << "\n";
+  os << indent << "BrightLights: " << this->BrightLights << " (fraction "
+     << this->BrightLightFraction << ", at most " << this->BrightLightCount << ", "
+     << this->BrightLightRays << " rays)\n";
   os << indent << "DefaultAlbedo: " << this->DefaultAlbedo[0] << " " << this->DefaultAlbedo[1]
      << " " << this->DefaultAlbedo[2] << "\n";
   os << indent << "DefaultProxyAlbedo: " << this->DefaultProxyAlbedo[0] << " "

@@ -35,6 +35,10 @@
  * | PlaneBounceShadows | on | planes reflect less where the proxies shadow them |
  * | PlaneBlocking | PLANES_IN_LIGHT | planes as steps in the light, or caps in log space |
  * | LocalLights | on | the lighting's spherical and point lights |
+ * | BrightLights | on | the map's compact peaks (a sun) as distant lights; CPU filter |
+ * | BrightLightFraction | 0.05 | a peak holding less of the map's power stays in the SH |
+ * | BrightLightCount | 4 | at most this many peaks are taken out |
+ * | BrightLightRays | 16 | rays per light and receiver through an occluder (penumbra) |
  * | DefaultAlbedo | 0.8 0.8 0.8 | receivers' albedo without an AlbedoArrayName array |
  * | DefaultProxyAlbedo | 0.8 0.8 0.8 | proxies' albedo without an AlbedoArrayName array |
  * | AlbedoArrayName | "Albedo" | per-point albedo of receivers and proxies (0..1 or bytes) |
@@ -139,6 +143,18 @@ public:
   vtkSetMacro(LocalLights, bool);
   vtkGetMacro(LocalLights, bool);
   vtkBooleanMacro(LocalLights, bool);
+  /// Bright lights out of the map (pgiBrightLights.h): each gets its own
+  /// sharp shadow (rays against the meshes through the filter's occluder,
+  /// else the proxies' cones), the SH carries the rest.
+  vtkSetMacro(BrightLights, bool);
+  vtkGetMacro(BrightLights, bool);
+  vtkBooleanMacro(BrightLights, bool);
+  vtkSetClampMacro(BrightLightFraction, double, 0.0, 1.0);
+  vtkGetMacro(BrightLightFraction, double);
+  vtkSetClampMacro(BrightLightCount, int, 0, 16);
+  vtkGetMacro(BrightLightCount, int);
+  vtkSetClampMacro(BrightLightRays, int, 1, 256);
+  vtkGetMacro(BrightLightRays, int);
   vtkSetVector3Macro(DefaultAlbedo, double);
   vtkGetVector3Macro(DefaultAlbedo, double);
   vtkSetVector3Macro(DefaultProxyAlbedo, double);
@@ -184,6 +200,7 @@ public:
     bool PlaneBounceShadows = true;
     unsigned PlaneBlockings = 0x3;
     bool LocalLights = true;
+    bool BrightLights = true;   // BrightLights and its three knobs
     bool SelfVisibility = true; // receivers' SelfLogVisibility arrays
     bool ReceiverAlbedo = true; // DefaultAlbedo and AlbedoArrayName on receivers
     bool ExpGuards = true;      // HybridMaxNorm, RangeTolerance
@@ -227,6 +244,10 @@ protected:
   bool PlaneBounceShadows = true;
   int PlaneBlocking = PLANES_IN_LIGHT;
   bool LocalLights = true;
+  bool BrightLights = true;
+  double BrightLightFraction = 0.05;
+  int BrightLightCount = 4;
+  int BrightLightRays = 16;
   double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
   double DefaultProxyAlbedo[3] = { 0.8, 0.8, 0.8 };
   char* AlbedoArrayName = nullptr;

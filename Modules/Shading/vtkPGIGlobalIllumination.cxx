@@ -1,5 +1,6 @@
 #include "vtkPGIGlobalIllumination.h"
 
+#include "pgiBrightLightShadows.h"
 #include "pgiEnvironmentMap.h"
 #include "pgiEnvironmentShading.h"
 #include "pgiIndirectLight.h"
@@ -15,6 +16,7 @@
 #include "pgiSphereTree.h"
 #include "pgiSphericalLights.h"
 #include "vtkPGILighting.h"
+#include "vtkPGIOccluder.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -117,6 +119,7 @@ void UnitNormal(vtkDataArray* normals, vtkIdType i, double n[3])
 } // namespace
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Lighting, vtkPGILighting);
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Controller, vtkMultiProcessController);
+vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Occluder, vtkPGIOccluder);
 
 namespace
 {
@@ -155,6 +158,7 @@ struct ShadeScratch
   std::vector<vtkIdType> ByBlockers, Who;
   std::vector<long long> Key;
   std::vector<float> BatchSelfLogs;
+  proxygi::BrightLightScratch Bright;
 };
 
 // The receivers' precomputed own visibility (vtkPGISelfVisibility), where
@@ -418,6 +422,7 @@ vtkPGIGlobalIllumination::vtkPGIGlobalIllumination()
 vtkPGIGlobalIllumination::~vtkPGIGlobalIllumination()
 {
   this->SetLighting(nullptr);
+  this->SetOccluder(nullptr);
   this->SetController(nullptr);
   this->Settings->UnRegister(this);
 }
@@ -447,6 +452,10 @@ vtkMTimeType vtkPGIGlobalIllumination::GetMTime()
   if (this->Lighting)
   {
     t = std::max(t, this->Lighting->GetMTime());
+  }
+  if (this->Occluder)
+  {
+    t = std::max(t, this->Occluder->GetMTime());
   }
   return std::max(t, this->Bake->vtkObject::GetMTime());
 }
@@ -481,6 +490,7 @@ void vtkPGIGlobalIllumination::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Lighting: " << this->Lighting << "\n";
+  os << indent << "Occluder: " << this->Occluder << "\n";
   os << indent << "Settings:\n";
   this->Settings->PrintSelf(os, indent.GetNextIndent());
   os << indent << "BlockerPlanes: " << this->Bake->GetNumberOfBlockerPlanes() << "\n";
@@ -828,6 +838,23 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
       : proxygi::SphericalLightBlocking::PerSphere);
   const proxygi::SphericalLights& shadowedLeaves = b.ShadowedLeaves();
   const proxygi::SoftShadows shadows(b.Kernel);
+  proxygi::BrightLightSet bright;
+  const bool brightRays = b.RunBrightLights && shadowsOn && this->Occluder;
+  const float rayOffset =
+    brightRays ? static_cast<float>(1e-5 * this->Occluder->GetSceneSize()) : 0.0f;
+  if (b.RunBrightLights)
+  {
+    bright.Set(b.BrightLights, brightRays ? settings->GetBrightLightRays() : 16);
+  }
+  std::atomic<long long> brightNs(0);
+  // The planes' unshadowed light from the residual, and the directions the
+  // receivers look at them along.
+  std::vector<float> planeResidual(3 * blockers.Planes()), planeHemisphere(3 * 16);
+  for (std::size_t k = 0; k < blockers.Planes(); ++k)
+  {
+    openShading.ShadeUnshadowed(&blockers.PlaneNormal[3 * k], &planeResidual[3 * k]);
+  }
+  proxygi::CosineHemisphere(16, planeHemisphere.data());
   // Receivers on or below a plane keep the planes in log space (they see
   // under the ones they are below, and skip those).
   proxygi::SoftShadowSettings logSettings = b.Kernel;
@@ -879,7 +906,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
         ShadeScratch& buffers = this->Scratch->PerThread.Local();
         proxygi::SphericalLightScratch& scratch = buffers.Lights;
         vtkIdType localShadowed = 0, localFailures = 0, localShadowedFailures = 0;
-        long long localSecondPassNs = 0;
+        long long localSecondPassNs = 0, localBrightNs = 0;
         // The visibility of the whole range first, in batches of receivers
         // that share their blockers (cluster) and kernel (planes in the light
         // or in log space), so the batched kernels run full lanes.
@@ -1029,6 +1056,41 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             }
           }
         }
+        // The bright lights' part of the planes' light, sampled where each
+        // receiver sees the plane: the residual's scale and theirs, blended
+        // by their shares of the plane's light.
+        if (scalePlanes && b.RunBrightLights)
+        {
+          if (planeScales.empty())
+          {
+            planeScales.assign(3 * static_cast<std::size_t>(planes) * count, 1.0f);
+          }
+          for (vtkIdType j = 0; j < count; ++j)
+          {
+            for (int k = 0; k < planes; ++k)
+            {
+              float lit[3], open[3];
+              if (!proxygi::BrightLightsOnPlane(bright,
+                    cl.Of.empty() ? blockers : cl.Blockers[cl.Of[first + j]], k,
+                    brightRays ? this->Occluder : nullptr, rayOffset,
+                    static_cast<float>(settings->GetMinBlockerAngle()), &points[3 * j],
+                    &facing[3 * j], planeHemisphere, buffers.Bright, lit, open))
+              {
+                continue;
+              }
+              float* scale = &planeScales[3 * (j * planes + k)];
+              const float* residual = &planeResidual[3 * k];
+              for (int c = 0; c < 3; ++c)
+              {
+                const float whole = residual[c] + open[c];
+                if (whole > 0.0f)
+                {
+                  scale[c] = std::min(1.0f, (residual[c] * scale[c] + lit[c]) / whole);
+                }
+              }
+            }
+          }
+        }
         visibilityNs += std::chrono::duration_cast<std::chrono::nanoseconds>(
           std::chrono::steady_clock::now() - visibilityStart)
                           .count();
@@ -1069,6 +1131,23 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
           else
           {
             openShading.ShadeUnshadowed(nf, rgb);
+          }
+          if (b.RunBrightLights)
+          {
+            const auto start = std::chrono::steady_clock::now();
+            if (brightRays)
+            {
+              proxygi::BrightLightsFromRays(
+                bright, mine, *this->Occluder, p, nf, rayOffset, buffers.Bright, rgb);
+            }
+            else
+            {
+              proxygi::BrightLightsFromProxies(bright, mine, p, nf,
+                static_cast<float>(settings->GetMinBlockerAngle()), shadowsOn, rgb);
+            }
+            localBrightNs += std::chrono::duration_cast<std::chrono::nanoseconds>(
+              std::chrono::steady_clock::now() - start)
+                               .count();
           }
           float planeBounce[3] = { 0, 0, 0 };
           if (runIndirect || runPlaneBounce)
@@ -1134,6 +1213,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
         failures += localFailures;
         shadowedFailures += localShadowedFailures;
         secondPassNs += localSecondPassNs;
+        brightNs += localBrightNs;
       });
     this->UpdateProgress(static_cast<double>(block + 1) / blocks);
   }
@@ -1149,6 +1229,28 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
                 : "per-sphere")
          << " blocking, " << seconds << " s summed over threads ("
          << (n ? 1e6 * seconds / static_cast<double>(n) : 0.0) << " us per receiver)";
+    this->Plan.push_back(line.str());
+  }
+  if (b.RunBrightLights)
+  {
+    const double seconds = 1e-9 * static_cast<double>(brightNs.load());
+    std::ostringstream line;
+    line << "bright lights: " << b.BrightLights.size() << " shaded on " << n << " receivers, ";
+    if (brightRays)
+    {
+      line << "shadowed by " << bright.Rays << " rays per light against the occluder ("
+           << this->Occluder->Describe() << ")";
+    }
+    else if (shadowsOn)
+    {
+      line << "shadowed by the proxies (the light's cone against each sphere, analytic; "
+              "an occluder gives the meshes' own shadows)";
+    }
+    else
+    {
+      line << "unshadowed (shadows switched off)";
+    }
+    line << ", " << seconds << " s summed over threads";
     this->Plan.push_back(line.str());
   }
   if (shadowedFailures > 0)
@@ -1309,6 +1411,11 @@ int vtkPGIGlobalIllumination::RequestData(
   }
   Clock::time_point stage = Clock::now();
   error = this->PrepareBake(globalProxies);
+  if (error.empty() && this->Occluder && this->Bake->GetScene().RunBrightLights &&
+    this->Effective->GetShadows() && !this->Occluder->Prepare(error))
+  {
+    error = "Occluder: " + error + ".";
+  }
   this->StageMs[1] = since(stage);
   if (!proxygi::parallel::AllOk(controller, error.empty(), error, agreed, &traffic))
   {

@@ -45,6 +45,16 @@
  * order differs, an array is missing or SelfVisibility is off, the
  * self-shadow rules run, and the plan says why.
  *
+ * Bright lights (settings BrightLights, on by default): where the
+ * environment has compact peaks holding enough of its power (a sun, lamps:
+ * pgiBrightLights.h), they are taken out of the map and shaded as distant
+ * disk lights with their own sharp shadows and penumbrae, added to
+ * DirectShadowed; the SH carries the rest. The shadows come from rays
+ * against the real meshes when an occluder is set (SetOccluder, e.g. a
+ * vtkPGIMeshOccluder holding the scene's meshes; BrightLightRays per light
+ * and receiver), else from the proxies analytically (the light's cone
+ * against each sphere's cap). The bounce keeps the whole map.
+ *
  * Simulate only what the scene needs: shadows run only when there are
  * blockers; per receiver, the exp runs only when a blocker subtends more than
  * MinBlockerAngle after the self-shadow rules (receivers with none get g = 1
@@ -102,6 +112,7 @@ class vtkFloatArray;
 class vtkUnsignedCharArray;
 class vtkMultiProcessController;
 class vtkPGILighting;
+class vtkPGIOccluder;
 
 class PROXYGISHADING_EXPORT vtkPGIGlobalIllumination : public vtkPolyDataAlgorithm
 {
@@ -132,6 +143,11 @@ public:
   void AddBlockerPlane(double ox, double oy, double oz, double nx, double ny, double nz, double ar,
     double ag, double ab);
   void RemoveAllBlockerPlanes();
+
+  /// Real geometry for the bright lights' shadow rays (null: the proxies'
+  /// cones shadow them).
+  virtual void SetOccluder(vtkPGIOccluder* occluder);
+  vtkGetObjectMacro(Occluder, vtkPGIOccluder);
 
   /// Scale of the radiance in the RadianceSRGB colours (default 1).
   vtkSetClampMacro(ColorExposure, double, 0.0, VTK_DOUBLE_MAX);
@@ -164,6 +180,7 @@ protected:
   void ShadeReceivers(vtkPolyData* receivers, vtkDataArray* normals, vtkPolyData* output);
 
   vtkPGILighting* Lighting = nullptr;
+  vtkPGIOccluder* Occluder = nullptr;
   vtkPGIGISettings* Settings = nullptr;
   vtkNew<vtkPGIGISettings> Effective;
   vtkNew<vtkPGIGIBake> Bake;

@@ -1,0 +1,6 @@
+#include "vtkPGIOccluder.h"
+
+void vtkPGIOccluder::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}
