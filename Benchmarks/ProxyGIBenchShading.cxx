@@ -6,8 +6,13 @@
 // effect the scene does not call for (skipped) against the effect off, and
 // against the effect running, to show a skipped effect costs nothing.
 // Bake/...: an update that reuses the shared precompute against one that
-// rebuilds it.
+// rebuilds it. BrightLights/...: taking a map's sun out, and a frame of the
+// bunny scene under a sun map with it off, shadowed by the proxies' cones,
+// and by rays against the meshes (static, and moving: the Embree scene
+// rebuilt every update).
 #include "pgiBenchPeak.h"
+#include "pgiBrightLights.h"
+#include "pgiEnvironmentMap.h"
 #include "pgiSHBatch.h"
 #include "pgiSoftShadows.h"
 #ifdef PROXYGI_BENCH_SCENES
@@ -17,6 +22,7 @@
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
+#include "vtkPGIOccluder.h"
 
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
@@ -376,7 +382,90 @@ void BenchBunnyOverGround(benchmark::State& state, double hierarchy)
     }
   }
 }
+
+// A frame of the bunny scene under the sunrise map with every effect the CLI
+// runs (shadowed bounce, cuts at 25 degrees, self-visibility off here):
+// each update moves the proxies by a small step; variant 0 keeps the sun in
+// the SH, 1 shadows it by the proxies' cones, 2 by rays against the meshes,
+// 3 the same with the meshes marked changed (the Embree scene rebuilt).
+void BenchBrightUpdate(benchmark::State& state, int variant)
+{
+  std::string error;
+  SceneDescription scene = DefaultScene();
+  scene.EnvironmentMap = "environments/sunrise.exr";
+  scene.Name = "default scene, sunrise map";
+  LoadedScene loaded;
+  SceneProxies proxies;
+  if (!BuildScene(scene, loaded, error) ||
+    !BuildSceneProxies(scene, loaded, 64, PROXYGI_BENCH_CACHE, proxies, error))
+  {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  const auto receivers = SceneReceivers(loaded);
+  vtkSmartPointer<vtkPGIOccluder> occluder = variant >= 2 ? SceneOccluder(receivers) : nullptr;
+  std::vector<vtkSmartPointer<vtkPGIGlobalIllumination>> filters;
+  for (const auto& r : receivers)
+  {
+    auto gi = vtkSmartPointer<vtkPGIGlobalIllumination>::New();
+    gi->SetInputData(r);
+    ConfigureGlobalIllumination(gi, scene, loaded, proxies);
+    gi->GetSettings()->SetIndirectMode(vtkPGIGISettings::INDIRECT_MODE_SHADOWED);
+    gi->GetSettings()->SetHierarchyAngle(25.0);
+    gi->GetSettings()->SetBrightLights(variant > 0);
+    gi->SetOccluder(occluder);
+    gi->Update();
+    filters.push_back(gi);
+  }
+  vtkPoints* centres = proxies.Spheres->GetPoints();
+  double step = 1e-4;
+  for (auto _ : state)
+  {
+    for (vtkIdType i = 0; i < centres->GetNumberOfPoints(); ++i)
+    {
+      double c[3];
+      centres->GetPoint(i, c);
+      c[0] += step;
+      centres->SetPoint(i, c);
+    }
+    step = -step;
+    centres->Modified();
+    proxies.Spheres->Modified();
+    if (variant == 3)
+    {
+      receivers.front()->Modified();
+    }
+    for (auto& gi : filters)
+    {
+      gi->Update();
+    }
+  }
+  state.counters["receivers"] = static_cast<double>(
+    receivers.front()->GetNumberOfPoints() + receivers.back()->GetNumberOfPoints());
+}
 #endif
+
+// Taking the sun out of the sunrise map (1024 x 512).
+void BenchExtractBrightLights(benchmark::State& state)
+{
+  proxygi::EnvironmentMap map;
+  vtkNew<vtkPGILighting> lighting;
+  lighting->SetEnvironmentFileName(PROXYGI_BENCH_DATA "/environments/sunrise.exr");
+  const proxygi::EnvironmentMap* loaded = nullptr;
+  std::string error;
+  if (!lighting->GetEnvironment(loaded, error))
+  {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  proxygi::BrightLightResult result;
+  for (auto _ : state)
+  {
+    proxygi::ExtractBrightLights(*loaded, proxygi::BrightLightOptions(), result);
+    benchmark::DoNotOptimize(result.Lights.data());
+  }
+  state.counters["lights"] = static_cast<double>(result.Lights.size());
+}
 } // namespace
 
 int main(int argc, char** argv)
@@ -390,6 +479,19 @@ int main(int argc, char** argv)
   {
     benchmark::RegisterBenchmark(plans[variant], BenchPlan, variant)->Unit(benchmark::kMillisecond);
   }
+  benchmark::RegisterBenchmark("BrightLights/extract, sunrise 1024x512", BenchExtractBrightLights)
+    ->Unit(benchmark::kMillisecond);
+#ifdef PROXYGI_BENCH_SCENES
+  const char* bright[] = { "BrightLights/frame, sun in the SH",
+    "BrightLights/frame, proxies' cones", "BrightLights/frame, rays, meshes static",
+    "BrightLights/frame, rays, meshes moving" };
+  for (int variant = 0; variant < 4; ++variant)
+  {
+    benchmark::RegisterBenchmark(bright[variant], BenchBrightUpdate, variant)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  }
+#endif
   for (int count : { 8, 64 })
   {
     const std::string proxies = "/proxies:" + std::to_string(count);

@@ -15,6 +15,7 @@
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
+#include "vtkPGIOccluder.h"
 
 #include <vtkAxis.h>
 #include <vtkChartLegend.h>
@@ -186,6 +187,7 @@ int main(int argc, char* argv[])
     int Mode = vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
     int Blocking = vtkPGIGISettings::BLOCKING_PER_SPHERE;
     bool SelfVisibility = false;
+    int Bright = 0; // bright lights: 0 off (the map in SH), 1 proxies' cones, 2 rays
   };
   std::vector<Config> configs;
   configs.push_back({ "baseline", "order 4, HYB, 64 spheres, averaged" });
@@ -258,6 +260,27 @@ int main(int argc, char* argv[])
     configs.push_back(c);
   }
   {
+    Config c{ "bright lights", "taken out, shadowed by the proxies' cones" };
+    c.Bright = 1;
+    configs.push_back(c);
+    c.Setting = "taken out, 16 rays per light against the meshes";
+    c.Bright = 2;
+    configs.push_back(c);
+    c.Knob = "proxygi render";
+    c.Setting = "its default: traced self, bright rays, shadowed, hierarchy 25";
+    c.SelfVisibility = true;
+    c.Mode = vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
+    c.Hierarchy = 25.0;
+    configs.push_back(c);
+  }
+  // The meshes for the bright lights' rays (its Embree scene built here).
+  vtkSmartPointer<vtkPGIOccluder> occluder = SceneOccluder(receivers);
+  if (!occluder->Prepare(error))
+  {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 1;
+  }
+  {
     Config c{ "no shadows", "unshadowed environment (what shadows buy)" };
     c.Shadows = false;
     configs.push_back(c);
@@ -294,6 +317,8 @@ int main(int argc, char* argv[])
         gi->GetSettings()->SetPlaneBounceShadows(c.PlaneBounceShadows);
         gi->GetSettings()->SetIndirectMode(c.Mode);
         gi->GetSettings()->SetSphericalLightBlocking(c.Blocking);
+        gi->GetSettings()->SetBrightLights(c.Bright > 0);
+        gi->SetOccluder(c.Bright == 2 ? occluder.Get() : nullptr);
         gi->Update();
         shaded.push_back(gi->GetOutput());
       }
@@ -425,11 +450,20 @@ int main(int argc, char* argv[])
         planes.push_back(k);
       }
     }
-    for (int variant = 0; variant < 4; ++variant)
+    vtkSmartPointer<vtkPGIOccluder> meshes = SceneOccluder(rc);
+    if (!meshes->Prepare(error))
     {
-      const int mode = variant % 2 ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
-                                   : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return 1;
+    }
+    // Unshadowed, shadowed, both traced; then shadowed and traced with the
+    // bright lights taken out (proxies' cones, rays against the meshes).
+    for (int variant = 0; variant < 6; ++variant)
+    {
+      const int mode = variant % 2 || variant >= 4 ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+                                                   : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
       const bool traced = variant >= 2;
+      const int bright = variant >= 4 ? variant - 3 : 0;
       std::vector<vtkSmartPointer<vtkPolyData>> shaded;
       vtkIdType count = 0;
       double best = 1e300;
@@ -443,6 +477,8 @@ int main(int argc, char* argv[])
           gi->SetInputData(r);
           ConfigureGlobalIllumination(gi, sd, ld, sp);
           gi->GetSettings()->SetIndirectMode(mode);
+          gi->GetSettings()->SetBrightLights(bright > 0);
+          gi->SetOccluder(bright == 2 ? meshes.Get() : nullptr);
           gi->Update();
           shaded.push_back(gi->GetOutput());
           count += repeat == 0 ? r->GetNumberOfPoints() : 0;
@@ -454,7 +490,9 @@ int main(int argc, char* argv[])
       std::snprintf(line, sizeof(line),
         "| %s | %s | %lld | %.3f | %.1f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% |\n",
         sd.Name.c_str(),
-        mode == vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+        bright == 2 ? "shadowed, traced, bright lights (rays)"
+          : bright == 1 ? "shadowed, traced, bright lights (proxies)"
+          : mode == vtkPGIGISettings::INDIRECT_MODE_SHADOWED
           ? (traced ? "shadowed, self-visibility traced" : "shadowed")
           : (traced ? "unshadowed, self-visibility traced" : "unshadowed"),
         static_cast<long long>(count), best, tracing,

@@ -77,6 +77,22 @@ double ConeVisibility(const BrightLightSet& lights, std::size_t l, const Blocker
   {
     float c[3] = { blockers.X[s], blockers.Y[s], blockers.Z[s] };
     float r = blockers.R[s];
+    {
+      // The rules only shrink a sphere within itself: one apart from the
+      // cone as it is stays apart (no rules run).
+      const double v[3] = { c[0] - q[0], c[1] - q[1], c[2] - q[2] };
+      const double dist2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+      const double along = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
+      if (dist2 > static_cast<double>(r) * r)
+      {
+        const double dist = std::sqrt(dist2);
+        const double sb = r / dist, cb = std::sqrt(1.0 - sb * sb);
+        if (along / dist <= ca * cb - sa * sb)
+        {
+          continue;
+        }
+      }
+    }
     if (!ReplaceBlocker(q, n, c, r))
     {
       continue;
