@@ -490,7 +490,7 @@ int main(int argc, char* argv[])
       std::snprintf(line, sizeof(line),
         "| %s | %s | %lld | %.3f | %.1f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% |\n",
         sd.Name.c_str(),
-        bright == 2 ? "shadowed, traced, bright lights (rays)"
+        bright == 2     ? "shadowed, traced, bright lights (rays)"
           : bright == 1 ? "shadowed, traced, bright lights (proxies)"
           : mode == vtkPGIGISettings::INDIRECT_MODE_SHADOWED
           ? (traced ? "shadowed, self-visibility traced" : "shadowed")

@@ -126,6 +126,9 @@ check gpu 'says:^note: --bright-lights does not apply to --mode gpu' --bright-li
 check image-space 'says:^note: --bright-shadows does not apply to --mode image-space' \
   --bright-shadows proxies
 check gpu 'says:^note: --bright-rays does not apply to --mode gpu' --bright-rays 4
+for mode in vertex gpu image-space; do
+  check "$mode" changes --background none
+done
 check gpu 'says:^not honoured: HierarchyAngle' --hierarchy 25
 check image-space 'says:^not honoured: HierarchyAngle' --hierarchy 25
 check vertex 'says:^note: --scale does not apply to --mode vertex' --scale 4

@@ -66,6 +66,8 @@ an option a mode has no use for as "note: ... does not apply".
   --bright-shadows R  their shadows: rays (default: against the scene's meshes,
                       Embree) or proxies (the light's cone against the spheres)
   --bright-rays N     rays per light and vertex (default 16: the penumbra)
+  --background B      map (default: the environment behind the scene, at the
+                      picture's exposure, as Embree's image shows it) or none
   --size WxH          image size (default: the scene's)
   --reference-spp N   samples per vertex of the reference (default 1024)
   --exposure E        tone-mapping scale (default: 95th percentile to 0.8)

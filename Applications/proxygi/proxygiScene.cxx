@@ -8,7 +8,9 @@
 #include "proxygiImage.h"
 #include "proxygiProgress.h"
 
+#include "pgiEnvironmentMap.h"
 #include "pgiOffscreenWindow.h"
+#include "pgiSRGB.h"
 #include "pgiScene.h"
 #include "pgiSceneSetup.h"
 #include "vtkPGIGIPolyDataMapper.h"
@@ -25,6 +27,7 @@
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkLogger.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
@@ -33,6 +36,8 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkSkybox.h>
+#include <vtkTexture.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
 #include <vtkXMLImageDataReader.h>
@@ -45,6 +50,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 namespace proxygi
 {
@@ -69,7 +75,7 @@ struct RenderOptions
   std::string AutoReason; // why --mode auto chose Mode
   int Order = 4, Spheres = 64, ReferenceSpp = 1024, ReceiverScale = 2, PixelSpp = 256;
   int SelfVisibility = 256; // rays per vertex of the meshes' own visibility; 0: the rules
-  std::string BrightLights = "on", BrightShadows = "rays";
+  std::string BrightLights = "on", BrightShadows = "rays", Background = "map";
   int BrightRays = 16;
   int ExpMethod = vtkPGIGISettings::EXP_HYB;
   std::string MethodName = "HYB", IndirectName = "shadowed";
@@ -115,6 +121,7 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   o.ReceiverScale = static_cast<int>(NumberOption(args, "--scale", 2, ok));
   o.SelfVisibility = static_cast<int>(NumberOption(args, "--self-visibility", 256, ok));
   o.BrightLights = Option(args, "--bright-lights", "on");
+  o.Background = Option(args, "--background", "map");
   o.BrightShadows = Option(args, "--bright-shadows", "rays");
   o.BrightRays = static_cast<int>(NumberOption(args, "--bright-rays", 16, ok));
   o.PixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
@@ -140,13 +147,13 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
       o.ReceiverScale != 8) ||
     o.PixelSpp < 1 || o.SelfVisibility < 0 || o.SelfVisibility > 65536 ||
     (o.BrightLights != "on" && o.BrightLights != "off") ||
-    (o.BrightShadows != "rays" && o.BrightShadows != "proxies") || o.BrightRays < 1 ||
-    o.BrightRays > 256)
+    (o.BrightShadows != "rays" && o.BrightShadows != "proxies") ||
+    (o.Background != "map" && o.Background != "none") || o.BrightRays < 1 || o.BrightRays > 256)
   {
     vtkLogF(ERROR,
       "proxygi render: --mode gpu|vertex|image-space, --scale 1|2|4|8, "
       "--pixel-reference-spp >= 1, 0 <= --self-visibility <= 65536, --bright-lights on|off, "
-      "--bright-shadows rays|proxies, 1 <= --bright-rays <= 256");
+      "--bright-shadows rays|proxies, 1 <= --bright-rays <= 256, --background map|none");
     return false;
   }
   if (o.IndirectName != "shadowed" && o.IndirectName != "unshadowed" && o.IndirectName != "off")
@@ -265,6 +272,62 @@ std::vector<vtkSmartPointer<vtkPolyData>> ShadeOnCPU(
     }
   }
   return shaded;
+}
+
+// The environment behind the scene, drawn as the pictures are: exposure
+// times radiance, sRGB bytes (Embree's image shows the same). Null for a
+// uniform sky (the grey background stays).
+vtkSmartPointer<vtkImageData> EnvironmentBackground(vtkPGILighting* lighting, double exposure)
+{
+  const proxygi::EnvironmentMap* map = nullptr;
+  std::string error;
+  if (!lighting->GetEnvironmentImage() && !lighting->GetEnvironmentFileName())
+  {
+    return nullptr;
+  }
+  if (!lighting->GetEnvironment(map, error) || map->GetWidth() < 4)
+  {
+    return nullptr;
+  }
+  const int w = map->GetWidth(), h = map->GetHeight();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(w, h, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* bytes = static_cast<unsigned char*>(image->GetScalarPointer());
+  const std::vector<float>& rgb = map->GetRGB();
+  const double scale = exposure * lighting->GetEnvironmentScale();
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      // VTK's rows run bottom-up, the map's top-down; its columns run the
+      // other way round the sky from the skybox's.
+      const float* texel = &rgb[3 * (static_cast<std::size_t>(j) * w + i)];
+      unsigned char* out = &bytes[3 * (static_cast<std::size_t>(h - 1 - j) * w + (w - 1 - i))];
+      for (int c = 0; c < 3; ++c)
+      {
+        out[c] = proxygi::ToSRGB8(std::min(1.0, scale * texel[c]));
+      }
+    }
+  }
+  return image;
+}
+
+void AddEnvironmentBackground(vtkRenderer* renderer, vtkImageData* image, double rotationDegrees)
+{
+  vtkNew<vtkTexture> texture;
+  texture->SetInputData(image);
+  texture->InterpolateOn();
+  texture->RepeatOn();
+  vtkNew<vtkSkybox> sky;
+  sky->SetTexture(texture);
+  sky->SetProjectionToSphere();
+  sky->SetFloorPlane(0.0f, 0.0f, 1.0f, 0.0f);
+  // Checked against Embree's image of the same view (city map, turned and
+  // not): the skybox's azimuth starts half a turn from the map's.
+  const double a = vtkMath::RadiansFromDegrees(rotationDegrees);
+  sky->SetFloorRight(static_cast<float>(-std::sin(a)), static_cast<float>(std::cos(a)), 0.0f);
+  renderer->AddActor(sky);
 }
 
 // GPU mode after the first frame: the per-vertex radiance read back (the
@@ -424,6 +487,15 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   }
   renderer->SetActiveCamera(loaded.Camera);
   renderer->ResetCameraClippingRange();
+  // The map behind the scene (--background none: grey). The GPU mode knows
+  // its exposure after the first frame: the picture is then redrawn.
+  vtkSmartPointer<vtkImageData> background = o.Background == "map"
+    ? EnvironmentBackground(loaded.Lighting, exposure > 0.0 ? exposure : 1.0)
+    : nullptr;
+  if (background)
+  {
+    AddEnvironmentBackground(renderer, background, loaded.Lighting->GetEnvironmentRotation());
+  }
   // EGL without a display, the X server's window with one (Xvfb included).
   std::string windowPath;
   vtkSmartPointer<vtkRenderWindow> window = NewOffscreenRenderWindow(&windowPath);
@@ -457,6 +529,11 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     giFrame = TimeImageSpace(window, pass, o.ReceiverScale);
     t2 = Clock::now();
   }
+  if (background && !o.Vertex())
+  {
+    background->DeepCopy(EnvironmentBackground(loaded.Lighting, exposure));
+    background->Modified();
+  }
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->SetInputBufferTypeToRGB();
@@ -476,10 +553,19 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   // pictures decoded from sRGB, geometry pixels unsaturated in both.
   if (o.PixelError && !o.NoError)
   {
+    // Keyed by all the image depends on: the scene, the view and the size.
+    std::ostringstream view;
+    view.precision(17);
+    view << DescribeScene(scene) << '|' << scene.Size[0] << 'x' << scene.Size[1];
+    for (int c = 0; c < 3; ++c)
+    {
+      view << '|' << scene.CameraPosition[c] << '|' << scene.FocalPoint[c] << '|'
+           << scene.ViewUp[c];
+    }
+    view << '|' << scene.ViewAngle;
     const std::string cachedImage = cache + "/image-" +
-      std::to_string(std::hash<std::string>()(
-        scene.Name + std::to_string(scene.Size[0]) + "x" + std::to_string(scene.Size[1]))) +
-      "-spp" + std::to_string(pixelSpp) + ".vti";
+      std::to_string(std::hash<std::string>()(view.str())) + "-spp" + std::to_string(pixelSpp) +
+      ".vti";
     vtkSmartPointer<vtkImageData> truth;
     if (std::ifstream(cachedImage))
     {

@@ -63,14 +63,14 @@ bool vtkPGIMeshOccluder::Prepare(std::string& error)
   {
     if (!proxygi::AddPolyData(*tracer, mesh, albedo, nullptr, error))
     {
-      error = "occluder mesh: " + error;
+      error.insert(0, "occluder mesh: ");
       return false;
     }
     this->Triangles += mesh->GetNumberOfPolys();
   }
   if (!tracer->Commit(error))
   {
-    error = "occluder: " + error;
+    error.insert(0, "occluder: ");
     return false;
   }
   this->Tracer = std::move(tracer);

@@ -105,6 +105,8 @@ std::string Describe(const SceneObject& o)
   return s.str();
 }
 
+} // namespace
+
 std::string DescribeScene(const SceneDescription& scene)
 {
   std::ostringstream s;
@@ -122,7 +124,6 @@ std::string DescribeScene(const SceneDescription& scene)
   }
   return s.str();
 }
-} // namespace
 
 std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(const LoadedScene& loaded)
 {

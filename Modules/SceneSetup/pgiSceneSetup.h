@@ -59,6 +59,11 @@ PROXYGISCENESETUP_EXPORT bool BuildSceneProxies(const SceneDescription& scene,
   const LoadedScene& loaded, int spheresPerMesh, const std::string& cacheDir, SceneProxies& proxies,
   std::string& error, SetupMonitor* monitor = nullptr);
 
+/// Everything a scene's cached results depend on (objects, their placement
+/// and albedo, the environment with its rotation and scale, the lights), as
+/// one string for cache keys.
+PROXYGISCENESETUP_EXPORT std::string DescribeScene(const SceneDescription& scene);
+
 /// The receivers of a scene: every object with point normals (unsplit).
 PROXYGISCENESETUP_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(
   const LoadedScene& loaded);
