@@ -228,17 +228,12 @@ void ExtractBrightLights(
   result.Residual.SetRotation(map.GetRotation());
 }
 
-void DistantLightDirections(const DistantLight& light, int count, double turn, float* directions)
+void FrameAbout(const double z[3], double x[3], double y[3])
 {
-  const double* z = light.Direction;
-  // A frame around the light's direction.
-  double x[3] = { 1, 0, 0 };
-  if (std::abs(z[0]) > 0.9)
-  {
-    x[0] = 0;
-    x[1] = 1;
-  }
-  const double dot = x[0] * z[0] + x[1] * z[1] + x[2] * z[2];
+  x[0] = std::abs(z[0]) > 0.9 ? 0.0 : 1.0;
+  x[1] = 1.0 - x[0];
+  x[2] = 0.0;
+  const double dot = x[0] * z[0] + x[1] * z[1];
   for (int c = 0; c < 3; ++c)
   {
     x[c] -= dot * z[c];
@@ -248,8 +243,16 @@ void DistantLightDirections(const DistantLight& light, int count, double turn, f
   {
     x[c] /= nx;
   }
-  const double y[3] = { z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2],
-    z[0] * x[1] - z[1] * x[0] };
+  y[0] = z[1] * x[2] - z[2] * x[1];
+  y[1] = z[2] * x[0] - z[0] * x[2];
+  y[2] = z[0] * x[1] - z[1] * x[0];
+}
+
+void DistantLightDirections(const DistantLight& light, int count, double turn, float* directions)
+{
+  const double* z = light.Direction;
+  double x[3], y[3];
+  FrameAbout(z, x, y);
   const double golden = (1.0 + std::sqrt(5.0)) / 2.0;
   const double span = 1.0 - std::cos(light.HalfAngle);
   for (int k = 0; k < count; ++k)

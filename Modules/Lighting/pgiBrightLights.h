@@ -64,6 +64,9 @@ struct PROXYGILIGHTING_EXPORT BrightLightResult
 PROXYGILIGHTING_EXPORT void ExtractBrightLights(
   const EnvironmentMap& map, const BrightLightOptions& options, BrightLightResult& result);
 
+/// A right-handed unit frame (x, y, z) about the unit vector z.
+PROXYGILIGHTING_EXPORT void FrameAbout(const double z[3], double x[3], double y[3]);
+
 /**
  * `count` directions over the light's disk (stratified: a spherical
  * Fibonacci spiral of equal areas, turned by `turn` radians), 3 floats each,

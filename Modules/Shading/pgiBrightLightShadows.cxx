@@ -25,6 +25,19 @@ bool PlaneBlocks(
   const float s = (p[0] - o[0]) * m[0] + (p[1] - o[1]) * m[1] + (p[2] - o[2]) * m[2];
   return s > -slack && w[0] * m[0] + w[1] * m[1] + w[2] * m[2] < 0.0f;
 }
+
+// Sum over light l's directions of max(n.w, 0).
+double CosineSum(const BrightLightSet& lights, std::size_t l, const float n[3])
+{
+  const float* dirs = &lights.Directions[3 * static_cast<std::size_t>(lights.Rays) * l];
+  double sum = 0.0;
+  for (int k = 0; k < lights.Rays; ++k)
+  {
+    const float* w = &dirs[3 * k];
+    sum += std::max(0.0f, n[0] * w[0] + n[1] * w[1] + n[2] * w[2]);
+  }
+  return sum;
+}
 } // namespace
 
 double CapOverlapArea(double a, double b, double g)
@@ -131,16 +144,9 @@ double ConeVisibility(const BrightLightSet& lights, std::size_t l, const Blocker
 void BrightLightsFromProxies(const BrightLightSet& lights, const Blockers& blockers,
   const float p[3], const float n[3], float minAngle, bool shadows, float rgb[3])
 {
-  const int rays = lights.Rays;
   for (std::size_t l = 0; l < lights.Lights.size(); ++l)
   {
-    const float* dirs = &lights.Directions[3 * rays * l];
-    double cosines = 0.0;
-    for (int k = 0; k < rays; ++k)
-    {
-      const float* w = &dirs[3 * k];
-      cosines += std::max(0.0f, n[0] * w[0] + n[1] * w[1] + n[2] * w[2]);
-    }
+    const double cosines = CosineSum(lights, l, n);
     if (cosines <= 0.0)
     {
       continue;
@@ -237,25 +243,13 @@ bool BrightLightsOnPlane(const BrightLightSet& lights, const Blockers& blockers,
   {
     return false;
   }
-  // A frame about n.
-  float t[3] = { 1.0f, 0.0f, 0.0f };
-  if (std::abs(n[0]) > 0.9f)
-  {
-    t[0] = 0.0f;
-    t[1] = 1.0f;
-  }
-  const float dot = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
-  for (int c = 0; c < 3; ++c)
-  {
-    t[c] -= dot * n[c];
-  }
-  const float tl = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-  for (float& v : t)
-  {
-    v /= tl;
-  }
-  const float b[3] = { n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2],
-    n[0] * t[1] - n[1] * t[0] };
+  const double nd[3] = { n[0], n[1], n[2] };
+  double td[3], bd[3];
+  FrameAbout(nd, td, bd);
+  const float t[3] = { static_cast<float>(td[0]), static_cast<float>(td[1]),
+    static_cast<float>(td[2]) };
+  const float b[3] = { static_cast<float>(bd[0]), static_cast<float>(bd[1]),
+    static_cast<float>(bd[2]) };
   // The points where the directions meet the plane.
   std::vector<float>& points = scratch.Points;
   points.clear();
@@ -288,12 +282,7 @@ bool BrightLightsOnPlane(const BrightLightSet& lights, const Blockers& blockers,
   {
     // The light's unshadowed exit radiance off the plane (the same everywhere on it).
     const float* dirs = &lights.Directions[3 * rays * l];
-    double cosines = 0.0;
-    for (int k = 0; k < rays; ++k)
-    {
-      const float* w = &dirs[3 * k];
-      cosines += std::max(0.0f, m[0] * w[0] + m[1] * w[1] + m[2] * w[2]);
-    }
+    const double cosines = CosineSum(lights, l, m);
     if (cosines <= 0.0)
     {
       continue;

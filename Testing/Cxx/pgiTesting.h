@@ -10,10 +10,34 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 namespace pgitest
 {
+/// Whether some line holds `text` (a filter's plan); with `report`, a miss
+/// prints the lines.
+inline bool Says(
+  const std::vector<std::string>& lines, const std::string& text, bool report = false)
+{
+  for (const std::string& line : lines)
+  {
+    if (line.find(text) != std::string::npos)
+    {
+      return true;
+    }
+  }
+  if (report)
+  {
+    std::printf("plan lacks \"%s\"; it says:\n", text.c_str());
+    for (const std::string& line : lines)
+    {
+      std::printf("  %s\n", line.c_str());
+    }
+  }
+  return false;
+}
+
 inline int& Failures()
 {
   static int count = 0;

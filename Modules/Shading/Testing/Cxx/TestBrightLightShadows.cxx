@@ -85,18 +85,6 @@ vtkSmartPointer<vtkPolyData> Proxy()
   proxies->GetPointData()->AddArray(radius);
   return proxies;
 }
-
-bool PlanSays(vtkPGIGlobalIllumination* gi, const std::string& what)
-{
-  for (const std::string& line : gi->GetPlan())
-  {
-    if (line.find(what) != std::string::npos)
-    {
-      return true;
-    }
-  }
-  return false;
-}
 } // namespace
 
 int TestBrightLightShadows(int, char*[])
@@ -207,8 +195,8 @@ int TestBrightLightShadows(int, char*[])
   // Measured 0.0095, 0.00087: the cosine varies over the lit part of the disk.
   PGI_BELOW(worst, 0.015);
   PGI_BELOW(rms, 0.002);
-  PGI_CHECK(PlanSays(proxyRoute, "bright lights: 1 taken out of the map"));
-  PGI_CHECK(PlanSays(proxyRoute, "shadowed by the proxies"));
+  PGI_CHECK(pgitest::Says(proxyRoute->GetPlan(), "bright lights: 1 taken out of the map"));
+  PGI_CHECK(pgitest::Says(proxyRoute->GetPlan(), "shadowed by the proxies"));
   // Rays against a sphere mesh: 64 rays per light step the penumbra by 1/64.
   vtkNew<vtkSphereSource> ball;
   ball->SetCenter(Centre[0], Centre[1], Centre[2]);
@@ -224,7 +212,8 @@ int TestBrightLightShadows(int, char*[])
   // Measured 0.035, 0.0023.
   PGI_BELOW(worst, 0.05);
   PGI_BELOW(rms, 0.004);
-  PGI_CHECK(PlanSays(rayRoute, "shadowed by 64 rays per light against the occluder (Embree"));
+  PGI_CHECK(pgitest::Says(
+    rayRoute->GetPlan(), "shadowed by 64 rays per light against the occluder (Embree"));
   // A second update reuses the occluder's Embree scene.
   rayRoute->GetSettings()->SetBrightLightRays(32);
   rayRoute->Update();
@@ -234,7 +223,8 @@ int TestBrightLightShadows(int, char*[])
   compare(shOnly, worst, rms);
   std::printf("SH alone: largest %.4f, RMS %.5f of the lit value\n", worst, rms);
   PGI_CHECK(worst > 0.5 && rms > 0.1); // measured 0.76, 0.17
-  PGI_CHECK(PlanSays(shOnly, "bright lights: off; the map's brightest compact peak holds"));
+  PGI_CHECK(
+    pgitest::Says(shOnly->GetPlan(), "bright lights: off; the map's brightest compact peak holds"));
 
   // The sun half below a plane: a receiver above it, facing the sun.
   {

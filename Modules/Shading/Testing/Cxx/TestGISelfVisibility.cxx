@@ -53,18 +53,6 @@ bool Same(vtkDataArray* a, vtkDataArray* b)
   }
   return a->GetNumberOfTuples() == b->GetNumberOfTuples();
 }
-
-bool PlanSays(vtkPGIGlobalIllumination* gi, const std::string& what)
-{
-  for (const std::string& line : gi->GetPlan())
-  {
-    if (line.find(what) != std::string::npos)
-    {
-      return true;
-    }
-  }
-  return false;
-}
 } // namespace
 
 int TestGISelfVisibility(int, char*[])
@@ -132,9 +120,9 @@ int TestGISelfVisibility(int, char*[])
     std::printf("%s alone, uniform sky, against Embree (512 spp): direct %.2f%% (rules) -> %.2f%% "
                 "(traced), total %.2f%% -> %.2f%%\n",
       c.Mesh, 100 * rulesDirect, 100 * selfDirect, 100 * rulesTotal, 100 * selfTotal);
-    PGI_CHECK(PlanSays(traced, "self-visibility: precomputed"));
-    PGI_CHECK(PlanSays(traced, "indirect light (self)"));
-    PGI_CHECK(!PlanSays(rules, "self-visibility"));
+    PGI_CHECK(pgitest::Says(traced->GetPlan(), "self-visibility: precomputed"));
+    PGI_CHECK(pgitest::Says(traced->GetPlan(), "indirect light (self)"));
+    PGI_CHECK(!pgitest::Says(rules->GetPlan(), "self-visibility"));
     PGI_BELOW(selfDirect, 0.04);
     PGI_BELOW(selfDirect, 0.3 * rulesDirect);
     PGI_BELOW(selfTotal, c.SelfTotalBelow);
@@ -152,13 +140,13 @@ int TestGISelfVisibility(int, char*[])
 
     // The knob off: the rules, bit for bit.
     auto off = shade(self->GetOutput(), false);
-    PGI_CHECK(PlanSays(off, "SelfVisibility off"));
+    PGI_CHECK(pgitest::Says(off->GetPlan(), "SelfVisibility off"));
     PGI_CHECK(
       Same(off->GetOutput()->GetPointData()->GetArray("Radiance"), r->GetArray("Radiance")));
     // Another order than the arrays': the rules.
     auto order3 = shade(self->GetOutput(), true, 3);
     auto rules3 = shade(mesh, true, 3);
-    PGI_CHECK(PlanSays(order3, "the self-shadow rules run"));
+    PGI_CHECK(pgitest::Says(order3->GetPlan(), "the self-shadow rules run"));
     PGI_CHECK(Same(order3->GetOutput()->GetPointData()->GetArray("Radiance"),
       rules3->GetOutput()->GetPointData()->GetArray("Radiance")));
     // Moved rigidly (turned 40 degrees about a tilted axis, shifted): the
@@ -184,7 +172,7 @@ int TestGISelfVisibility(int, char*[])
       const double change =
         Error(moved->GetOutput()->GetPointData()->GetArray("Radiance"), t->GetArray("Radiance"));
       std::printf("%s turned 40 degrees: radiance changed by %.2e relative RMS\n", c.Mesh, change);
-      PGI_CHECK(PlanSays(moved, "moved rigidly"));
+      PGI_CHECK(pgitest::Says(moved->GetPlan(), "moved rigidly"));
       PGI_BELOW(change, 2e-4);
     }
     // Deformed (one point moved): the rules, bit for bit with the moved mesh.
@@ -198,8 +186,8 @@ int TestGISelfVisibility(int, char*[])
     movedBare->GetPoints()->SetPoint(10, p);
     auto deformed = shade(moved, true);
     auto deformedRules = shade(movedBare, true);
-    PGI_CHECK(PlanSays(deformed, "moved or deformed"));
-    PGI_CHECK(!PlanSays(deformed, "indirect light (self)"));
+    PGI_CHECK(pgitest::Says(deformed->GetPlan(), "moved or deformed"));
+    PGI_CHECK(!pgitest::Says(deformed->GetPlan(), "indirect light (self)"));
     PGI_CHECK(Same(deformed->GetOutput()->GetPointData()->GetArray("Radiance"),
       deformedRules->GetOutput()->GetPointData()->GetArray("Radiance")));
   }

@@ -28,27 +28,6 @@ void CountStart(vtkObject*, unsigned long, void*, void*)
   ++Executions;
 }
 
-bool PlanSays(vtkPGIGlobalIllumination* gi, const std::string& text, bool report = true)
-{
-  for (const std::string& line : gi->GetPlan())
-  {
-    if (line.find(text) != std::string::npos)
-    {
-      return true;
-    }
-  }
-  if (!report)
-  {
-    return false;
-  }
-  std::printf("plan lacks \"%s\"; it says:\n", text.c_str());
-  for (const std::string& line : gi->GetPlan())
-  {
-    std::printf("  %s\n", line.c_str());
-  }
-  return false;
-}
-
 // Largest |a - b| over every component of the named array.
 double Difference(vtkPolyData* a, vtkPolyData* b, const char* name)
 {
@@ -167,29 +146,31 @@ int TestGlobalIlluminationPlan(int, char*[])
   vtkSmartPointer<vtkPGIGlobalIllumination> gi;
 
   vtkSmartPointer<vtkPolyData> skipped = run(dark, sky, true, unshadowed, false, &gi);
-  PGI_CHECK(PlanSays(gi, "indirect light: skipped (every proxy and plane has albedo 0)"));
+  PGI_CHECK(pgitest::Says(
+    gi->GetPlan(), "indirect light: skipped (every proxy and plane has albedo 0)", true));
   same(skipped, off, "unshadowed bounce, albedo 0 (skipped)");
 
   skipped = run(dark, sky, true, shadowed, false, &gi);
-  PGI_CHECK(
-    PlanSays(gi, "indirect light (shadowed): skipped (every spherical light has albedo 0)"));
+  PGI_CHECK(pgitest::Says(gi->GetPlan(),
+    "indirect light (shadowed): skipped (every spherical light has albedo 0)", true));
   same(skipped, off, "shadowed bounce, albedo 0 (skipped)");
 
   skipped = run(dark, sky, false, unshadowed, true, &gi);
-  PGI_CHECK(PlanSays(gi, "local lights: skipped (none in the lighting)"));
+  PGI_CHECK(pgitest::Says(gi->GetPlan(), "local lights: skipped (none in the lighting)", true));
   same(skipped, off, "local lights, none in the lighting (skipped)");
 
   vtkNew<vtkPGILighting> night;
   night->SetUniformRadiance(0, 0, 0);
   vtkSmartPointer<vtkPolyData> lit = WithAlbedo(scene.Proxies, 0.8);
   skipped = run(lit, night, true, unshadowed, false, &gi);
-  PGI_CHECK(PlanSays(gi, "indirect light: skipped (the environment is black)"));
+  PGI_CHECK(
+    pgitest::Says(gi->GetPlan(), "indirect light: skipped (the environment is black)", true));
   same(skipped, run(lit, night, false, unshadowed, false), "bounce under a black sky (skipped)");
 
   // Where an effect runs, it shows: the test above could not pass by
   // leaving the bounce out everywhere.
   vtkSmartPointer<vtkPolyData> bounce = run(lit, sky, true, unshadowed, false, &gi);
-  PGI_CHECK(PlanSays(gi, "indirect light: one bounce"));
+  PGI_CHECK(pgitest::Says(gi->GetPlan(), "indirect light: one bounce", true));
   const double added = Difference(bounce, run(lit, sky, false, unshadowed, false), "Radiance");
   std::printf("unshadowed bounce, albedo 0.8 (runs): adds up to %.3f\n", added);
   PGI_CHECK(added > 0.01);
@@ -211,8 +192,8 @@ int TestGlobalIlluminationPlan(int, char*[])
     exact->GetSettings()->SetMinBlockerAngle(0.0);
     exact->Update();
     fast->Update();
-    PGI_CHECK(PlanSays(fast, " 0 of "));
-    PGI_CHECK(!PlanSays(exact, " 0 of ", false));
+    PGI_CHECK(pgitest::Says(fast->GetPlan(), " 0 of ", true));
+    PGI_CHECK(!pgitest::Says(exact->GetPlan(), " 0 of "));
     const double difference = Difference(exact->GetOutput(), fast->GetOutput(), "Radiance");
     const double peak = pgitest::HardPeak(exact->GetOutput()->GetPointData()->GetArray("Radiance"));
     std::printf("a 0.0015 rad blocker skipped by MinBlockerAngle: largest radiance difference "
