@@ -308,6 +308,21 @@ void BenchBake(benchmark::State& state, int count, bool proxiesChange)
   state.SetItemsProcessed(state.iterations() * grid->GetNumberOfPoints());
 }
 #ifdef PROXYGI_BENCH_SCENES
+// The scene and its 64-sphere proxies (cached); false (the benchmark
+// skipped with the reason) when either fails.
+bool LoadWithProxies(benchmark::State& state, const SceneDescription& scene, LoadedScene& loaded,
+  SceneProxies& proxies)
+{
+  std::string error;
+  if (!BuildScene(scene, loaded, error) ||
+    !BuildSceneProxies(scene, loaded, 64, PROXYGI_BENCH_CACHE, proxies, error))
+  {
+    state.SkipWithError(error.c_str());
+    return false;
+  }
+  return true;
+}
+
 // Moves every proxy by `step` along x, and the next call back.
 void NudgeProxies(vtkPolyData* spheres, double& step)
 {
@@ -331,14 +346,11 @@ void NudgeProxies(vtkPolyData* spheres, double& step)
 // clusters stand), on all cores.
 void BenchBunnyOverGround(benchmark::State& state, double hierarchy)
 {
-  std::string error;
   const SceneDescription scene = DefaultScene();
   LoadedScene loaded;
   SceneProxies proxies;
-  if (!BuildScene(scene, loaded, error) ||
-    !BuildSceneProxies(scene, loaded, 64, PROXYGI_BENCH_CACHE, proxies, error))
+  if (!LoadWithProxies(state, scene, loaded, proxies))
   {
-    state.SkipWithError(error.c_str());
     return;
   }
   const auto receivers = SceneReceivers(loaded);
@@ -399,16 +411,13 @@ void BenchBunnyOverGround(benchmark::State& state, double hierarchy)
 // 3 the same with the meshes marked changed (the Embree scene rebuilt).
 void BenchBrightUpdate(benchmark::State& state, int variant)
 {
-  std::string error;
   SceneDescription scene = DefaultScene();
   scene.EnvironmentMap = "environments/sunrise.exr";
   scene.Name = "default scene, sunrise map";
   LoadedScene loaded;
   SceneProxies proxies;
-  if (!BuildScene(scene, loaded, error) ||
-    !BuildSceneProxies(scene, loaded, 64, PROXYGI_BENCH_CACHE, proxies, error))
+  if (!LoadWithProxies(state, scene, loaded, proxies))
   {
-    state.SkipWithError(error.c_str());
     return;
   }
   const auto receivers = SceneReceivers(loaded);

@@ -38,10 +38,10 @@
  * | BrightLights | on | the map's compact peaks (a sun) as distant lights; CPU filter |
  * | BrightLightFraction | 0.05 | a peak holding less of the map's power stays in the SH |
  * | BrightLightCount | 4 | at most this many peaks are taken out |
- * | BrightLightRays | 16 | rays per light and receiver through an occluder (penumbra) |
- * | DefaultAlbedo | 0.8 0.8 0.8 | receivers' albedo without an AlbedoArrayName array |
- * | DefaultProxyAlbedo | 0.8 0.8 0.8 | proxies' albedo without an AlbedoArrayName array |
- * | AlbedoArrayName | "Albedo" | per-point albedo of receivers and proxies (0..1 or bytes) |
+ * | BrightLightRays | 16 | directions per light and receiver over its disk (with an occluder, its
+ * rays) | | DefaultAlbedo | 0.8 0.8 0.8 | receivers' albedo without an AlbedoArrayName array | |
+ * DefaultProxyAlbedo | 0.8 0.8 0.8 | proxies' albedo without an AlbedoArrayName array | |
+ * AlbedoArrayName | "Albedo" | per-point albedo of receivers and proxies (0..1 or bytes) |
  */
 #ifndef vtkPGIGISettings_h
 #define vtkPGIGISettings_h

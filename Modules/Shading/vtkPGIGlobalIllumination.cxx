@@ -844,7 +844,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
     brightRays ? static_cast<float>(1e-5 * this->Occluder->GetSceneSize()) : 0.0f;
   if (b.RunBrightLights)
   {
-    bright.Set(b.BrightLights, brightRays ? settings->GetBrightLightRays() : 16);
+    bright.Set(b.BrightLights, settings->GetBrightLightRays());
   }
   std::atomic<long long> brightNs(0);
   // The planes' unshadowed light from the residual, and the directions the

@@ -51,9 +51,9 @@
  * disk lights with their own sharp shadows and penumbrae, added to
  * DirectShadowed; the SH carries the rest. The shadows come from rays
  * against the real meshes when an occluder is set (SetOccluder, e.g. a
- * vtkPGIMeshOccluder holding the scene's meshes; BrightLightRays per light
- * and receiver), else from the proxies analytically (the light's cone
- * against each sphere's cap). The bounce keeps the whole map.
+ * vtkPGIMeshOccluder holding the scene's meshes; one ray per direction,
+ * BrightLightRays directions per light and receiver), else from the proxies analytically (the
+ * light's cone against each sphere's cap). The bounce keeps the whole map.
  *
  * Simulate only what the scene needs: shadows run only when there are
  * blockers; per receiver, the exp runs only when a blocker subtends more than
