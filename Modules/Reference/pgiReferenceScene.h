@@ -1,11 +1,12 @@
 /**
  * @file pgiReferenceScene.h
  * @brief Feeding VTK data to the ReferenceTracer (shared by the per-vertex
- * filter and the per-pixel image source). Private to the module.
+ * filter, the per-pixel image source, the occluder and the light cloud).
  */
 #ifndef pgiReferenceScene_h
 #define pgiReferenceScene_h
 
+#include "ProxyGIReferenceModule.h"
 #include "pgiReferenceTracer.h"
 
 #include "vtkType.h"
@@ -22,15 +23,15 @@ namespace proxygi
  * named point array (3 components; unsigned char is read as 0..255) or the
  * default.
  */
-bool AddPolyData(ReferenceTracer& tracer, vtkPolyData* mesh, const double defaultAlbedo[3],
-  const char* albedoArray, std::string& error);
+PROXYGIREFERENCE_EXPORT bool AddPolyData(ReferenceTracer& tracer, vtkPolyData* mesh,
+  const double defaultAlbedo[3], const char* albedoArray, std::string& error);
 
 /// Adds proxy spheres: points with a "Radius" point array.
-bool AddProxySpheres(ReferenceTracer& tracer, vtkPolyData* proxies, const double defaultAlbedo[3],
-  const char* albedoArray, std::string& error);
+PROXYGIREFERENCE_EXPORT bool AddProxySpheres(ReferenceTracer& tracer, vtkPolyData* proxies,
+  const double defaultAlbedo[3], const char* albedoArray, std::string& error);
 
 /// Adds the lighting's spherical and point lights to the tracer.
-void AddLocalLights(ReferenceTracer& tracer, vtkPGILighting* lighting);
+PROXYGIREFERENCE_EXPORT void AddLocalLights(ReferenceTracer& tracer, vtkPGILighting* lighting);
 } // namespace proxygi
 
 #endif

@@ -626,7 +626,7 @@ void ReferenceTracer::EstimateRadianceAlongRay(const double origin[3], const dou
 }
 
 void ReferenceTracer::OccludedRays(int count, const float* origins, const float* directions,
-  float tnear, unsigned char* blocked) const
+  float tnear, const float* lengths, unsigned char* blocked) const
 {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -640,7 +640,7 @@ void ReferenceTracer::OccludedRays(int count, const float* origins, const float*
     ray.dir_y = directions[3 * i + 1];
     ray.dir_z = directions[3 * i + 2];
     ray.tnear = tnear;
-    ray.tfar = std::numeric_limits<float>::infinity();
+    ray.tfar = lengths ? lengths[i] : std::numeric_limits<float>::infinity();
     ray.mask = 0xFFFFFFFFu;
     ray.flags = 0;
     ray.time = 0.0f;
@@ -649,6 +649,53 @@ void ReferenceTracer::OccludedRays(int count, const float* origins, const float*
     blocked[i] = ray.tfar < 0.0f ? 1 : 0;
   }
   this->Rays.fetch_add(static_cast<std::uint64_t>(count), std::memory_order_relaxed);
+}
+
+double ReferenceTracer::GetRayOffset() const
+{
+  return this->Impl->Epsilon;
+}
+
+bool ReferenceTracer::SegmentBlocked(const double a[3], const double b[3]) const
+{
+  double d[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double length = std::sqrt(Dot(d, d));
+  if (!(length > this->Impl->Epsilon))
+  {
+    return false;
+  }
+  for (double& c : d)
+  {
+    c /= length;
+  }
+  return Occluded(Settings(), this->Impl->Scene, a, d, length - this->Impl->Epsilon, this->Rays);
+}
+
+void ReferenceTracer::GatherHits(const double x[3], const double n[3], std::uint64_t seed,
+  std::uint64_t stream, int count, std::vector<GatherHit>& hits) const
+{
+  hits.clear();
+  const Internal& s = *this->Impl;
+  Random rng(seed, stream);
+  const double o[3] = { x[0] + s.Epsilon * n[0], x[1] + s.Epsilon * n[1], x[2] + s.Epsilon * n[2] };
+  for (int i = 0; i < count; ++i)
+  {
+    double w[3];
+    CosineSample(n, rng.Next(), rng.Next(), w);
+    Hit hit;
+    if (!TracerAccess::Intersect(s, o, w, hit, this->Rays))
+    {
+      continue;
+    }
+    GatherHit g;
+    for (int k = 0; k < 3; ++k)
+    {
+      g.Position[k] = static_cast<float>(o[k] + hit.T * w[k] + s.Epsilon * hit.Normal[k]);
+      g.Normal[k] = static_cast<float>(hit.Normal[k]);
+      g.Albedo[k] = hit.Albedo[k];
+    }
+    hits.push_back(g);
+  }
 }
 
 bool ReferenceTracer::HitVertices(

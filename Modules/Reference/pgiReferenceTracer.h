@@ -111,11 +111,35 @@ public:
 
   /**
    * Shadow rays: for `count` rays from origins along unit directions (3
-   * floats each), blocked[i] = 1 when anything lies beyond tnear. For the
-   * GI filter's bright lights (vtkPGIMeshOccluder). Thread-safe.
+   * floats each), blocked[i] = 1 when anything lies between tnear and
+   * lengths[i] (null lengths: infinity). For the GI filter's bright lights
+   * and the light cloud's visibility tests (vtkPGIMeshOccluder). Thread-safe.
    */
   void OccludedRays(int count, const float* origins, const float* directions, float tnear,
-    unsigned char* blocked) const;
+    const float* lengths, unsigned char* blocked) const;
+
+  /// Whether anything blocks the segment from a to b (a kept off a surface
+  /// by the caller; the far end is shortened by the ray offset).
+  bool SegmentBlocked(const double a[3], const double b[3]) const;
+  /// The offset rays start at off a surface (1e-4 of the scene size).
+  double GetRayOffset() const;
+
+  /// A surface point seen from a receiver: where one gather ray hit.
+  struct GatherHit
+  {
+    float Position[3]; // offset off the surface along Normal by GetRayOffset()
+    float Normal[3];   // unit, facing the receiver's side
+    float Albedo[3];
+  };
+  /**
+   * The first hits of `count` cosine-sampled rays from x (unit normal n),
+   * drawn from random stream `stream` of `seed`; misses are left out, so a
+   * one-bounce estimate divides by `count`: E_ind(x) = pi/count sum over
+   * hits of L(hit). For precomputes that light one set of hits by many
+   * lights (the light cloud). Thread-safe.
+   */
+  void GatherHits(const double x[3], const double n[3], std::uint64_t seed, std::uint64_t stream,
+    int count, std::vector<GatherHit>& hits) const;
 
   /// Albedo and geometric normal of the first hit along a ray, for tests.
   bool FirstHit(const double origin[3], const double direction[3], double& t, double normal[3],

@@ -87,7 +87,18 @@ void vtkPGIMeshOccluder::Occluded(int count, const float* origins, const float* 
     std::fill_n(blocked, count, 0);
     return;
   }
-  this->Tracer->OccludedRays(count, origins, directions, tnear, blocked);
+  this->Tracer->OccludedRays(count, origins, directions, tnear, nullptr, blocked);
+}
+
+void vtkPGIMeshOccluder::OccludedSegments(int count, const float* origins, const float* directions,
+  const float* lengths, float tnear, unsigned char* blocked) const
+{
+  if (!this->Tracer)
+  {
+    std::fill_n(blocked, count, 0);
+    return;
+  }
+  this->Tracer->OccludedRays(count, origins, directions, tnear, lengths, blocked);
 }
 
 double vtkPGIMeshOccluder::GetSceneSize() const

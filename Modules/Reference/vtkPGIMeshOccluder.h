@@ -45,6 +45,8 @@ public:
   bool Prepare(std::string& error) override;
   void Occluded(int count, const float* origins, const float* directions, float tnear,
     unsigned char* blocked) const override;
+  void OccludedSegments(int count, const float* origins, const float* directions,
+    const float* lengths, float tnear, unsigned char* blocked) const override;
   double GetSceneSize() const override;
   std::string Describe() const override;
   /// How many times Prepare() built the Embree scene.

@@ -4,6 +4,7 @@
 #include "vtkPGILighting.h"
 #include "vtkPGIOFFReader.h"
 
+#include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
 #include "vtkCleanPolyData.h"
 #include "vtkFloatArray.h"
@@ -209,6 +210,69 @@ bool ParseSceneValue(const std::string& json, const std::string& baseFolder,
         return false;
       }
     }
+    else if (o.isMember("quad"))
+    {
+      object.Type = SceneObject::Kind::Plane;
+      object.PlaneCorners = true;
+      double resolution[2] = { 32, 32 };
+      if (!ReadVector(o["quad"], "origin", object.PlaneOrigin, 3, error) ||
+        !ReadVector(o["quad"], "point1", object.PlanePoint1, 3, error) ||
+        !ReadVector(o["quad"], "point2", object.PlanePoint2, 3, error) ||
+        !ReadVector(o["quad"], "resolution", resolution, 2, error))
+      {
+        error.insert(0, where);
+        return false;
+      }
+      double a[3], b[3], c[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        a[k] = object.PlanePoint1[k] - object.PlaneOrigin[k];
+        b[k] = object.PlanePoint2[k] - object.PlaneOrigin[k];
+      }
+      c[0] = a[1] * b[2] - a[2] * b[1];
+      c[1] = a[2] * b[0] - a[0] * b[2];
+      c[2] = a[0] * b[1] - a[1] * b[0];
+      const double area = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+      const double scale = std::sqrt(
+        (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]));
+      if (!(area > 1e-9 * scale) || !(scale > 0.0))
+      {
+        error = where + "a quad's corners must span a parallelogram (they are collinear)";
+        return false;
+      }
+      for (int k = 0; k < 2; ++k)
+      {
+        if (!(resolution[k] >= 1 && resolution[k] <= 4096))
+        {
+          error = where + "a quad's resolution must lie in 1..4096";
+          return false;
+        }
+        object.PlaneResolution[k] = static_cast<int>(resolution[k]);
+      }
+    }
+    else if (o.isMember("box"))
+    {
+      object.Type = SceneObject::Kind::Box;
+      double resolution = object.BoxResolution;
+      if (!ReadVector(o["box"], "center", object.BoxCenter, 3, error) ||
+        !ReadVector(o["box"], "size", object.BoxSize, 3, error) ||
+        !ReadNumber(o["box"], "resolution", resolution, error))
+      {
+        error.insert(0, where);
+        return false;
+      }
+      if (!(object.BoxSize[0] > 0.0 && object.BoxSize[1] > 0.0 && object.BoxSize[2] > 0.0))
+      {
+        error = where + "a box's size must be positive along each axis";
+        return false;
+      }
+      if (!(resolution >= 1 && resolution <= 1024))
+      {
+        error = where + "a box's resolution must lie in 1..1024";
+        return false;
+      }
+      object.BoxResolution = static_cast<int>(resolution);
+    }
     else if (o.isMember("sphere"))
     {
       object.Type = SceneObject::Kind::Sphere;
@@ -230,7 +294,7 @@ bool ParseSceneValue(const std::string& json, const std::string& baseFolder,
     }
     else
     {
-      error = where + "needs \"mesh\", \"plane\" or \"sphere\"";
+      error = where + "needs \"mesh\", \"plane\", \"quad\", \"box\" or \"sphere\"";
       return false;
     }
     if (!ReadVector(o, "translate", object.Translate, 3, error) ||
@@ -468,6 +532,41 @@ void SetSceneLights(const SceneDescription& scene, vtkPGILighting* lighting)
   }
 }
 
+namespace
+{
+// Six faces, each its own points (sharp edges keep their normals), outward.
+vtkSmartPointer<vtkPolyData> BoxMesh(const double c[3], const double size[3], int resolution)
+{
+  vtkNew<vtkAppendPolyData> faces;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    for (int side = -1; side <= 1; side += 2)
+    {
+      double origin[3], p1[3], p2[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        origin[k] = p1[k] = p2[k] = c[k] - 0.5 * size[k];
+      }
+      origin[axis] = p1[axis] = p2[axis] = c[axis] + 0.5 * side * size[axis];
+      // (p1 - origin) x (p2 - origin) points along +axis; swap for -axis.
+      p1[u] += size[u];
+      p2[v] += size[v];
+      vtkNew<vtkPlaneSource> face;
+      face->SetOrigin(origin);
+      face->SetPoint1(side > 0 ? p1 : p2);
+      face->SetPoint2(side > 0 ? p2 : p1);
+      face->SetResolution(resolution, resolution);
+      face->Update();
+      faces->AddInputData(face->GetOutput());
+    }
+  }
+  faces->Update();
+  vtkSmartPointer<vtkPolyData> mesh = faces->GetOutput();
+  return mesh;
+}
+} // namespace
+
 bool BuildScene(const SceneDescription& scene, LoadedScene& loaded, std::string& error)
 {
   loaded = LoadedScene();
@@ -490,6 +589,17 @@ bool BuildScene(const SceneDescription& scene, LoadedScene& loaded, std::string&
         return false;
       }
     }
+    else if (object.Type == SceneObject::Kind::Plane && object.PlaneCorners)
+    {
+      vtkNew<vtkPlaneSource> plane;
+      const double *o = object.PlaneOrigin, *p1 = object.PlanePoint1, *p2 = object.PlanePoint2;
+      plane->SetOrigin(o[0], o[1], o[2]);
+      plane->SetPoint1(p1[0], p1[1], p1[2]);
+      plane->SetPoint2(p2[0], p2[1], p2[2]);
+      plane->SetResolution(object.PlaneResolution[0], object.PlaneResolution[1]);
+      plane->Update();
+      mesh = plane->GetOutput();
+    }
     else if (object.Type == SceneObject::Kind::Plane)
     {
       vtkNew<vtkPlaneSource> plane;
@@ -501,6 +611,10 @@ bool BuildScene(const SceneDescription& scene, LoadedScene& loaded, std::string&
       plane->SetResolution(64, 64);
       plane->Update();
       mesh = plane->GetOutput();
+    }
+    else if (object.Type == SceneObject::Kind::Box)
+    {
+      mesh = BoxMesh(object.BoxCenter, object.BoxSize, object.BoxResolution);
     }
     else
     {

@@ -12,7 +12,11 @@
  *       "albedo": [0.8, 0.8, 0.8] },
  *     { "name": "ground", "plane": { "center": [0, 0, 0], "size": 6 },
  *       "albedo": [0.5, 0.5, 0.5] },
- *     { "name": "ball", "sphere": { "center": [0, 0, 1.5], "radius": 1, "resolution": 64 } }
+ *     { "name": "ball", "sphere": { "center": [0, 0, 1.5], "radius": 1, "resolution": 64 } },
+ *     { "name": "back wall", "quad": { "origin": [-1, 1, 0], "point1": [1, 1, 0],
+ *       "point2": [-1, 1, 2], "resolution": [32, 32] } },
+ *     { "name": "block", "box": { "center": [0.4, 0, 0.3], "size": [0.6, 0.6, 0.6],
+ *       "resolution": 8 } }
  *   ],
  *   "environment": { "map": "environments/forest.exr", "rotation": 0, "scale": 1 },
  *   "lights": [ { "type": "sphere", "center": [2, 0, 3], "radius": 0.3, "radiance": [20, 20, 20] },
@@ -22,6 +26,10 @@
  *   "effects": { "shadows": true, "indirect": true, "local_lights": true }
  * }
  * ```
+ * A "plane" is a horizontal square; a "quad" any parallelogram (vtkPlaneSource's
+ * origin and two corners: its normal is (point1 - origin) x (point2 - origin),
+ * it is lit on that side), a wall; both are planes to the SH route. A "box"
+ * has six faces with outward normals, each split resolution x resolution.
  * "environment" may instead be { "uniform": [r, g, b] }. Rotations are
  * degrees about x, then y, then z; the transform applies scale, rotation,
  * translation in that order. Mesh and map paths are tried relative to the
@@ -51,10 +59,17 @@ struct SceneObject
   {
     Mesh,
     Plane,
-    Sphere
+    Sphere,
+    Box
   } Type = Kind::Mesh;
   std::string MeshPath;
   double PlaneCenter[3] = { 0, 0, 0 }, PlaneSize = 1.0;
+  // A quad (a plane given by its corners) instead of the square.
+  bool PlaneCorners = false;
+  double PlaneOrigin[3] = { 0, 0, 0 }, PlanePoint1[3] = { 1, 0, 0 }, PlanePoint2[3] = { 0, 1, 0 };
+  int PlaneResolution[2] = { 64, 64 };
+  double BoxCenter[3] = { 0, 0, 0 }, BoxSize[3] = { 1, 1, 1 };
+  int BoxResolution = 8;
   double SphereCenter[3] = { 0, 0, 0 }, SphereRadius = 1.0;
   int SphereResolution = 64;
   double Translate[3] = { 0, 0, 0 }, Rotate[3] = { 0, 0, 0 }, Scale = 1.0;

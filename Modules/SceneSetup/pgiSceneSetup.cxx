@@ -102,6 +102,33 @@ std::string Describe(const SceneObject& o)
   {
     s << '|' << o.Translate[i] << '|' << o.Rotate[i] << '|' << o.Albedo[i];
   }
+  // The generated shapes' own geometry.
+  if (o.Type == SceneObject::Kind::Plane)
+  {
+    s << "|plane" << o.PlaneSize << ',' << o.PlaneCorners << ',' << o.PlaneResolution[0] << ','
+      << o.PlaneResolution[1];
+    for (int i = 0; i < 3; ++i)
+    {
+      s << ',' << o.PlaneCenter[i] << ',' << o.PlaneOrigin[i] << ',' << o.PlanePoint1[i] << ','
+        << o.PlanePoint2[i];
+    }
+  }
+  else if (o.Type == SceneObject::Kind::Sphere)
+  {
+    s << "|sphere" << o.SphereRadius << ',' << o.SphereResolution;
+    for (double c : o.SphereCenter)
+    {
+      s << ',' << c;
+    }
+  }
+  else if (o.Type == SceneObject::Kind::Box)
+  {
+    s << "|box" << o.BoxResolution;
+    for (int i = 0; i < 3; ++i)
+    {
+      s << ',' << o.BoxCenter[i] << ',' << o.BoxSize[i];
+    }
+  }
   return s.str();
 }
 

@@ -1,8 +1,8 @@
 /**
  * @class   vtkPGIOccluder
  * @brief   Shadow rays against real geometry for the GI filter's bright
- *          lights: an interface, so that the Shading module needs no ray
- *          tracer (vtkPGIMeshOccluder, in the Reference module, is Embree's).
+ *          lights and the light cloud's visibility tests: an interface, so that the Shading module
+ * needs no ray tracer (vtkPGIMeshOccluder, in the Reference module, is Embree's).
  *
  * vtkPGIGlobalIllumination calls Prepare() once per update, outside its
  * parallel loop, then Occluded() from many threads at once.
@@ -30,6 +30,10 @@ public:
    */
   virtual void Occluded(int count, const float* origins, const float* directions, float tnear,
     unsigned char* blocked) const = 0;
+  /// The same for segments: blocked when something lies between tnear and
+  /// lengths[i] along ray i (visibility between two points).
+  virtual void OccludedSegments(int count, const float* origins, const float* directions,
+    const float* lengths, float tnear, unsigned char* blocked) const = 0;
   /// The size of what it holds (its bounding box diagonal), for ray offsets.
   virtual double GetSceneSize() const = 0;
   /// A few words for the plan ("Embree, 3 meshes, 120,000 triangles").

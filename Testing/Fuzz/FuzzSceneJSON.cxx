@@ -49,7 +49,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   {
     finite = finite && Finite(o.PlaneCenter, 3) && std::isfinite(o.PlaneSize) &&
       Finite(o.SphereCenter, 3) && std::isfinite(o.SphereRadius) && Finite(o.Translate, 3) &&
-      Finite(o.Rotate, 3) && std::isfinite(o.Scale) && Finite(o.Albedo, 3);
+      Finite(o.Rotate, 3) && std::isfinite(o.Scale) && Finite(o.Albedo, 3) &&
+      Finite(o.PlaneOrigin, 3) && Finite(o.PlanePoint1, 3) && Finite(o.PlanePoint2, 3) &&
+      Finite(o.BoxCenter, 3) && Finite(o.BoxSize, 3);
   }
   for (const proxygi::SceneLight& l : scene.Lights)
   {

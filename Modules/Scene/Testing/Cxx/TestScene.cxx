@@ -4,11 +4,15 @@
 
 #include "pgiTesting.h"
 #include "vtkCamera.h"
+#include "vtkCell.h"
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkNew.h"
 #include "vtkPGILighting.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
 
 #include <cstring>
 
@@ -81,7 +85,13 @@ int TestScene(int, char*[])
     { "{\"objects\": [{\"plane\": {}, \"albedo\": [2, 0, 0]}]}", "albedo" },
     { "{\"objects\": [{\"plane\": {}, \"albedo\": [0.1, 0.2]}]}", "albedo" },
     { "{\"objects\": [{\"plane\": {}}], \"lights\": [{\"type\": \"laser\"}]}", "type" },
-    { "{\"objects\": [{\"plane\": {}}], \"camera\": {\"size\": [0, 10]}}", "size" } };
+    { "{\"objects\": [{\"plane\": {}}], \"camera\": {\"size\": [0, 10]}}", "size" },
+    { "{\"objects\": [{\"quad\": {\"origin\": [0, 0, 0], \"point1\": [1, 1, 1], "
+      "\"point2\": [2, 2, 2]}}]}",
+      "collinear" },
+    { "{\"objects\": [{\"quad\": {\"resolution\": [0, 4]}}]}", "resolution" },
+    { "{\"objects\": [{\"box\": {\"size\": [1, 0, 1]}}]}", "positive" },
+    { "{\"objects\": [{\"box\": {\"resolution\": 1e9}}]}", "resolution" } };
   for (const auto& b : bad)
   {
     std::string message;
@@ -91,6 +101,53 @@ int TestScene(int, char*[])
     {
       std::printf("  for %s got '%s'\n", b.Json, message.c_str());
     }
+  }
+  // Walls and boxes: a quad faces (point1 - origin) x (point2 - origin); a
+  // box's faces face out; each face has its own points.
+  PGI_CHECK(ParseScene("{\"objects\": [{\"quad\": {\"origin\": [1, -1, 0], \"point1\": [1, -1, 2], "
+                       "\"point2\": [1, 1, 0], \"resolution\": [4, 2]}}, "
+                       "{\"box\": {\"center\": [0, 0, 1], \"size\": [0.5, 1, 2], "
+                       "\"resolution\": 3}}]}",
+    ".", scene, error));
+  if (PGI_CHECK(BuildScene(scene, loaded, error) && loaded.Objects.size() == 2))
+  {
+    vtkPolyData* wall = loaded.Objects[0];
+    PGI_CHECK(wall->GetNumberOfPoints() == 15 && wall->GetNumberOfPolys() == 16);
+    vtkNew<vtkPolyDataNormals> normals;
+    normals->SetInputData(wall);
+    normals->ComputeCellNormalsOn();
+    normals->AutoOrientNormalsOff();
+    normals->ConsistencyOff();
+    normals->Update();
+    double n[3];
+    normals->GetOutput()->GetCellData()->GetNormals()->GetTuple(0, n);
+    PGI_NEAR(n[0], -1.0, 1e-12);
+    vtkPolyData* block = loaded.Objects[1];
+    PGI_CHECK(block->GetNumberOfPoints() == 6 * 16 && block->GetNumberOfPolys() == 6 * 18);
+    double b[6];
+    block->GetBounds(b);
+    PGI_NEAR(b[1] - b[0], 0.5, 1e-12);
+    PGI_NEAR(b[5] - b[4], 2.0, 1e-12);
+    normals->SetInputData(block);
+    normals->Update();
+    vtkDataArray* cellNormals = normals->GetOutput()->GetCellData()->GetNormals();
+    int outward = 0;
+    for (vtkIdType c = 0; c < block->GetNumberOfCells(); ++c)
+    {
+      double centre[3] = { 0, 0, 0 }, pt[3];
+      vtkCell* cell = block->GetCell(c);
+      for (vtkIdType k = 0; k < cell->GetNumberOfPoints(); ++k)
+      {
+        block->GetPoint(cell->GetPointId(k), pt);
+        for (int a = 0; a < 3; ++a)
+        {
+          centre[a] += pt[a] / cell->GetNumberOfPoints();
+        }
+      }
+      cellNormals->GetTuple(c, n);
+      outward += (centre[0] * n[0] + centre[1] * n[1] + (centre[2] - 1.0) * n[2]) > 0.0 ? 1 : 0;
+    }
+    PGI_CHECK(outward == block->GetNumberOfCells());
   }
   // Missing mesh and missing map: found at build time, with a hint.
   PGI_CHECK(ParseScene("{\"objects\": [{\"mesh\": \"nope.off\"}]}", ".", scene, error));

@@ -1,0 +1,108 @@
+/**
+ * @class   vtkPGILightCloud
+ * @brief   A light cloud (Kristensen et al. 2005): cloud lights (isotropic
+ *          point lights of unit intensity at fixed positions) and, for each,
+ *          the exit radiance it causes at every receiver vertex.
+ *
+ * vtkPGILightCloudPrecompute fills it on Embree; vtkPGILightCloudRelight
+ * lights the receivers from user lights placed anywhere in the cloud. The
+ * response is stored per light, receiver-major inside: RGB floats, exit
+ * radiance (albedo/pi times irradiance) per unit intensity (W/sr), one
+ * coefficient per colour for diffuse receivers. Contents says whether it
+ * holds the indirect light only (the paper's choice, since the direct light
+ * compresses badly and the soft-shadow route draws it) or direct light too.
+ *
+ * Uncompressed: 3 x lights floats per receiver (the paper's 216 lights are
+ * 648). ReceiverKey fingerprints the receivers' points so that relighting
+ * refuses a mesh the cloud was not computed for. Written and read by
+ * pgiLightCloudFile (vtkPGILightCloudReader reads it in a pipeline).
+ */
+#ifndef vtkPGILightCloud_h
+#define vtkPGILightCloud_h
+
+#include "ProxyGILightCloudModule.h"
+#include "vtkDataObject.h"
+#include "vtkPoints.h" // for the inline GetLightPositions
+#include "vtkSmartPointer.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+class vtkPolyData;
+
+class PROXYGILIGHTCLOUD_EXPORT vtkPGILightCloud : public vtkDataObject
+{
+public:
+  static vtkPGILightCloud* New();
+  vtkTypeMacro(vtkPGILightCloud, vtkDataObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ContentsType
+  {
+    IndirectOnly = 0,
+    DirectAndIndirect = 1
+  };
+
+  /// Sizes it for `lights` cloud lights over `receivers` receivers; the
+  /// positions are (0, 0, 0) and the responses 0 until set.
+  void Allocate(vtkIdType lights, vtkIdType receivers);
+  vtkIdType GetNumberOfLights() const;
+  vtkIdType GetNumberOfReceivers() const { return this->Receivers; }
+  /// The cloud lights' positions (one point per light).
+  vtkPoints* GetLightPositions() const { return this->Positions; }
+  /// Light j's response: 3 x receivers floats (RGB per receiver).
+  float* GetResponse(vtkIdType light);
+  const float* GetResponse(vtkIdType light) const;
+
+  vtkSetClampMacro(Contents, int, IndirectOnly, DirectAndIndirect);
+  vtkGetMacro(Contents, int);
+  /// Gather rays per receiver the precompute traced.
+  vtkSetMacro(Samples, int);
+  vtkGetMacro(Samples, int);
+  /// Fingerprint of the receivers' points (ReceiverKeyOf).
+  void SetReceiverKey(std::uint64_t key) { this->ReceiverKey = key; }
+  std::uint64_t GetReceiverKey() const { return this->ReceiverKey; }
+  static std::uint64_t ReceiverKeyOf(vtkPolyData* receivers);
+
+  /**
+   * The cloud's spacing: the median distance from a cloud light to its
+   * nearest neighbour (0 for fewer than two lights). Relighting calls a user
+   * light outside the cloud when it lies more than this beyond the lights'
+   * bounding box.
+   */
+  double GetSpacing();
+  /// The lights' bounding box (xmin, xmax, ymin, ...).
+  void GetLightBounds(double bounds[6]) const;
+
+  /// Stored coefficients per receiver (3 x lights, uncompressed).
+  vtkIdType GetCoefficientsPerReceiver() const { return 3 * this->GetNumberOfLights(); }
+  /// Kibibytes held (vtkDataObject's convention).
+  unsigned long GetActualMemorySize() override;
+
+  void Initialize() override;
+  void ShallowCopy(vtkDataObject* source) override;
+  void DeepCopy(vtkDataObject* source) override;
+
+  static vtkPGILightCloud* GetData(vtkInformation* info);
+  static vtkPGILightCloud* GetData(vtkInformationVector* v, int i = 0);
+
+protected:
+  vtkPGILightCloud();
+  ~vtkPGILightCloud() override;
+
+  vtkSmartPointer<vtkPoints> Positions;
+  // Shared between shallow copies; light-major, then receiver, then RGB.
+  std::shared_ptr<std::vector<float>> Response;
+  vtkIdType Receivers = 0;
+  int Contents = IndirectOnly;
+  int Samples = 0;
+  std::uint64_t ReceiverKey = 0;
+  double Spacing = -1.0; // cached; -1: not computed
+
+private:
+  vtkPGILightCloud(const vtkPGILightCloud&) = delete;
+  void operator=(const vtkPGILightCloud&) = delete;
+};
+
+#endif

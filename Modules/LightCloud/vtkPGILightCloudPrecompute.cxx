@@ -1,0 +1,546 @@
+#include "vtkPGILightCloudPrecompute.h"
+
+#include "pgiLightCloudFile.h"
+#include "pgiMaterial.h"
+#include "pgiReferenceScene.h"
+#include "pgiReferenceTracer.h"
+#include "vtkPGILightCloud.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkDemandDrivenPipeline.h"
+#include "vtkExecutive.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkSMPTools.h"
+#include "vtkTimerLog.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sys/stat.h>
+#include <vector>
+
+vtkStandardNewMacro(vtkPGILightCloudPrecompute);
+vtkCxxSetObjectMacro(vtkPGILightCloudPrecompute, LightPositions, vtkPoints);
+
+namespace
+{
+struct Fnv
+{
+  std::uint64_t Value = 1469598103934665603ull;
+  void Add(const void* data, std::size_t bytes)
+  {
+    const unsigned char* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i)
+    {
+      this->Value = (this->Value ^ b[i]) * 1099511628211ull;
+    }
+  }
+  template <class T>
+  void AddValue(const T& v)
+  {
+    this->Add(&v, sizeof(v));
+  }
+};
+
+bool FinitePoints(vtkPolyData* mesh)
+{
+  for (vtkIdType i = 0; mesh && i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// What a mesh gives the tracer: points, triangles' connectivity, albedo.
+void HashMesh(Fnv& h, vtkPolyData* mesh, const char* albedoArray, const double defaultAlbedo[3])
+{
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  h.AddValue(static_cast<long long>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3], a[3];
+    mesh->GetPoint(i, p);
+    proxygi::AlbedoOf(mesh, albedoArray, i, defaultAlbedo, a);
+    h.Add(p, sizeof(p));
+    h.Add(a, sizeof(a));
+  }
+  if (vtkCellArray* polys = mesh->GetPolys())
+  {
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+    {
+      polys->GetCellAtId(c, ids);
+      h.AddValue(static_cast<long long>(ids->GetNumberOfIds()));
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        h.AddValue(static_cast<long long>(ids->GetId(k)));
+      }
+    }
+  }
+}
+
+bool FileExists(const std::string& path)
+{
+  struct stat st;
+  return stat(path.c_str(), &st) == 0;
+}
+} // namespace
+
+vtkPGILightCloudPrecompute::vtkPGILightCloudPrecompute()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(1);
+  this->SetAlbedoArrayName("Albedo");
+}
+
+vtkPGILightCloudPrecompute::~vtkPGILightCloudPrecompute()
+{
+  this->SetLightPositions(nullptr);
+  this->SetAlbedoArrayName(nullptr);
+  this->SetCacheFileName(nullptr);
+}
+
+vtkMTimeType vtkPGILightCloudPrecompute::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->LightPositions)
+  {
+    t = std::max(t, this->LightPositions->GetMTime());
+  }
+  return t;
+}
+
+vtkPGILightCloud* vtkPGILightCloudPrecompute::GetOutput()
+{
+  return vtkPGILightCloud::SafeDownCast(this->GetOutputDataObject(0));
+}
+
+int vtkPGILightCloudPrecompute::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+  }
+  return 1;
+}
+
+int vtkPGILightCloudPrecompute::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkPGILightCloud");
+  return 1;
+}
+
+vtkTypeBool vtkPGILightCloudPrecompute::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** in, vtkInformationVector* out)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
+  {
+    vtkInformation* info = out->GetInformationObject(0);
+    if (!vtkPGILightCloud::GetData(info))
+    {
+      vtkNew<vtkPGILightCloud> cloud;
+      info->Set(vtkDataObject::DATA_OBJECT(), cloud);
+    }
+    return 1;
+  }
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    return this->RequestData(request, in, out);
+  }
+  return this->Superclass::ProcessRequest(request, in, out);
+}
+
+int vtkPGILightCloudPrecompute::RequestData(
+  vtkInformation*, vtkInformationVector** in, vtkInformationVector* out)
+{
+  vtkNew<vtkTimerLog> timer;
+  timer->StartTimer();
+  this->LightsTraced = this->LightsFromCache = 0;
+  this->RayCount = this->Seconds = 0.0;
+  vtkPolyData* receivers = vtkPolyData::GetData(in[0]);
+  vtkPGILightCloud* cloud = vtkPGILightCloud::GetData(out);
+  if (!receivers || receivers->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro(<< "No receivers: input 0 is empty.");
+    return 0;
+  }
+  if (!FinitePoints(receivers))
+  {
+    vtkErrorMacro(<< "The receivers hold NaN or Inf points.");
+    return 0;
+  }
+  std::vector<vtkPolyData*> objects;
+  for (int c = 0; c < this->GetNumberOfInputConnections(1); ++c)
+  {
+    vtkPolyData* object = vtkPolyData::GetData(in[1], c);
+    if (object && !FinitePoints(object))
+    {
+      vtkErrorMacro(<< "Scene object " << c << " holds NaN or Inf points.");
+      return 0;
+    }
+    if (object)
+    {
+      objects.push_back(object);
+    }
+  }
+
+  // The scene's box, for the default region and the clamp distance.
+  double box[6];
+  receivers->GetBounds(box);
+  for (vtkPolyData* object : objects)
+  {
+    double b[6];
+    object->GetBounds(b);
+    for (int k = 0; k < 3; ++k)
+    {
+      box[2 * k] = std::min(box[2 * k], b[2 * k]);
+      box[2 * k + 1] = std::max(box[2 * k + 1], b[2 * k + 1]);
+    }
+  }
+  const double diagonal = std::sqrt((box[1] - box[0]) * (box[1] - box[0]) +
+    (box[3] - box[2]) * (box[3] - box[2]) + (box[5] - box[4]) * (box[5] - box[4]));
+  const double clamp = this->ClampDistance > 0.0 ? this->ClampDistance : 1e-3 * diagonal;
+
+  // The cloud lights.
+  std::vector<double> lights;
+  if (this->LightPositions)
+  {
+    for (vtkIdType j = 0; j < this->LightPositions->GetNumberOfPoints(); ++j)
+    {
+      double p[3];
+      this->LightPositions->GetPoint(j, p);
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      {
+        vtkErrorMacro(<< "Cloud light " << j << " has a NaN or Inf position.");
+        return 0;
+      }
+      lights.insert(lights.end(), p, p + 3);
+    }
+  }
+  else
+  {
+    const double* r = this->RegionOfInterest;
+    const bool own = r[0] < r[1] && r[2] < r[3] && r[4] < r[5];
+    for (double v : this->RegionOfInterest)
+    {
+      if (own && !std::isfinite(v))
+      {
+        vtkErrorMacro(<< "RegionOfInterest holds NaN or Inf.");
+        return 0;
+      }
+    }
+    const double* region = own ? r : box;
+    const int* res = this->GridResolution;
+    if (res[0] < 1 || res[1] < 1 || res[2] < 1)
+    {
+      vtkErrorMacro(<< "GridResolution must be at least 1 along each axis.");
+      return 0;
+    }
+    for (int k = 0; k < res[2]; ++k)
+    {
+      for (int j = 0; j < res[1]; ++j)
+      {
+        for (int i = 0; i < res[0]; ++i)
+        {
+          const int idx[3] = { i, j, k };
+          for (int a = 0; a < 3; ++a)
+          {
+            // Cell centres: never on the region's walls.
+            lights.push_back(
+              region[2 * a] + (idx[a] + 0.5) * (region[2 * a + 1] - region[2 * a]) / res[a]);
+          }
+        }
+      }
+    }
+  }
+  const vtkIdType lightCount = static_cast<vtkIdType>(lights.size() / 3);
+  if (lightCount == 0)
+  {
+    vtkErrorMacro(<< "No cloud lights: the light positions are empty.");
+    return 0;
+  }
+
+  // Normals: the input's, or computed (no splitting: receivers stay 1:1).
+  vtkSmartPointer<vtkDataArray> normals = receivers->GetPointData()->GetNormals();
+  if (!normals)
+  {
+    vtkNew<vtkPolyDataNormals> filter;
+    filter->SetInputData(receivers);
+    filter->SplittingOff();
+    filter->ComputePointNormalsOn();
+    filter->Update();
+    if (filter->GetOutput()->GetNumberOfPoints() != receivers->GetNumberOfPoints() ||
+      !filter->GetOutput()->GetPointData()->GetNormals())
+    {
+      vtkErrorMacro(<< "Could not compute receiver normals (no polygons?); give point normals.");
+      return 0;
+    }
+    normals = filter->GetOutput()->GetPointData()->GetNormals();
+  }
+  const vtkIdType n = receivers->GetNumberOfPoints();
+  std::vector<double> normal(3 * n), albedo(3 * n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double* nrm = &normal[3 * i];
+    normals->GetTuple(i, nrm);
+    if (!(vtkMath::Normalize(nrm) > 0.0) || !std::isfinite(nrm[0]) || !std::isfinite(nrm[1]) ||
+      !std::isfinite(nrm[2]))
+    {
+      nrm[0] = nrm[1] = 0.0;
+      nrm[2] = 1.0;
+    }
+    proxygi::AlbedoOf(receivers, this->AlbedoArrayName, i, this->DefaultAlbedo, &albedo[3 * i]);
+  }
+
+  // Everything the cloud depends on.
+  Fnv key;
+  HashMesh(key, receivers, this->AlbedoArrayName, this->DefaultAlbedo);
+  key.Add(normal.data(), normal.size() * sizeof(double));
+  for (vtkPolyData* object : objects)
+  {
+    HashMesh(key, object, this->AlbedoArrayName, this->DefaultAlbedo);
+  }
+  key.Add(lights.data(), lights.size() * sizeof(double));
+  key.AddValue(this->Samples);
+  key.AddValue(this->IncludeDirect);
+  key.AddValue(this->Seed);
+  key.AddValue(clamp);
+
+  cloud->Initialize();
+  cloud->Allocate(lightCount, n);
+  for (vtkIdType j = 0; j < lightCount; ++j)
+  {
+    cloud->GetLightPositions()->SetPoint(j, &lights[3 * j]);
+  }
+  cloud->SetContents(
+    this->IncludeDirect ? vtkPGILightCloud::DirectAndIndirect : vtkPGILightCloud::IndirectOnly);
+  cloud->SetSamples(this->Samples);
+  cloud->SetReceiverKey(vtkPGILightCloud::ReceiverKeyOf(receivers));
+
+  // The cache: whole, partial (resume) or for something else (replace).
+  std::vector<char> done(static_cast<std::size_t>(lightCount), 0);
+  const std::string cachePath = this->CacheFileName ? this->CacheFileName : "";
+  std::string error;
+  bool appendToCache = false;
+  if (!cachePath.empty() && FileExists(cachePath))
+  {
+    vtkNew<vtkPGILightCloud> cached;
+    proxygi::LightCloudFileInfo info;
+    if (!proxygi::ReadLightCloud(cachePath, cached, info, error))
+    {
+      vtkErrorMacro(<< error << " (delete the file to recompute the cloud)");
+      return 0;
+    }
+    if (info.Key == key.Value && cached->GetNumberOfLights() == lightCount &&
+      cached->GetNumberOfReceivers() == n)
+    {
+      for (vtkIdType j = 0; j < lightCount; ++j)
+      {
+        if (info.Present[j])
+        {
+          std::copy_n(cached->GetResponse(j), 3 * n, cloud->GetResponse(j));
+          done[j] = 1;
+        }
+      }
+      this->LightsFromCache = info.LightsRead;
+      appendToCache = !info.TornTail;
+      if (info.TornTail)
+      {
+        vtkWarningMacro(<< "The cache '" << cachePath
+                        << "' ends inside a record (a stopped run); resuming from "
+                        << info.LightsRead << " of " << lightCount << " lights.");
+      }
+    }
+    else
+    {
+      vtkWarningMacro(<< "The cache '" << cachePath
+                      << "' holds another scene's or settings' cloud; recomputing it.");
+    }
+  }
+  if (!cachePath.empty() && !appendToCache && this->LightsFromCache < lightCount)
+  {
+    // A fresh file, with the lights already known written back first.
+    std::vector<vtkIdType> known;
+    for (vtkIdType j = 0; j < lightCount; ++j)
+    {
+      if (done[j])
+      {
+        known.push_back(j);
+      }
+    }
+    if (!proxygi::WriteLightCloudHeader(cachePath, cloud, key.Value, error) ||
+      !proxygi::AppendLightCloudRecords(cachePath, cloud, known, error))
+    {
+      vtkWarningMacro(<< error << "; going on without a cache.");
+    }
+    else
+    {
+      appendToCache = true;
+    }
+  }
+  if (this->LightsFromCache == lightCount)
+  {
+    this->UpdateProgress(1.0);
+    timer->StopTimer();
+    this->Seconds = timer->GetElapsedTime();
+    return 1;
+  }
+
+  // The scene on Embree.
+  proxygi::ReferenceTracer tracer;
+  bool ok =
+    proxygi::AddPolyData(tracer, receivers, this->DefaultAlbedo, this->AlbedoArrayName, error);
+  for (std::size_t c = 0; ok && c < objects.size(); ++c)
+  {
+    ok =
+      proxygi::AddPolyData(tracer, objects[c], this->DefaultAlbedo, this->AlbedoArrayName, error);
+  }
+  ok = ok && tracer.Commit(error);
+  if (!ok)
+  {
+    vtkErrorMacro(<< "Cannot build the scene: " << error);
+    return 0;
+  }
+  const double offset = tracer.GetRayOffset();
+
+  // Gather hits once per receiver; every light then lights the same hits,
+  // so the responses of neighbouring lights share their noise (smooth
+  // interpolation between them).
+  std::vector<std::vector<proxygi::ReferenceTracer::GatherHit>> hits(static_cast<std::size_t>(n));
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType first, vtkIdType last)
+    {
+      for (vtkIdType i = first; i < last; ++i)
+      {
+        double x[3];
+        receivers->GetPoint(i, x);
+        tracer.GatherHits(
+          x, &normal[3 * i], this->Seed, static_cast<std::uint64_t>(i), this->Samples, hits[i]);
+      }
+    });
+  this->UpdateProgress(0.05);
+
+  std::vector<vtkIdType> todo;
+  for (vtkIdType j = 0; j < lightCount; ++j)
+  {
+    if (!done[j])
+    {
+      todo.push_back(j);
+    }
+  }
+  const double clamp2 = clamp * clamp;
+  const double invSamples = 1.0 / this->Samples;
+  const std::size_t block = 4;
+  for (std::size_t b0 = 0; b0 < todo.size() && !this->GetAbortExecute(); b0 += block)
+  {
+    const std::size_t b1 = std::min(todo.size(), b0 + block);
+    vtkSMPTools::For(0, n,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType i = first; i < last; ++i)
+        {
+          double x[3];
+          receivers->GetPoint(i, x);
+          const double* nrm = &normal[3 * i];
+          const double o[3] = { x[0] + offset * nrm[0], x[1] + offset * nrm[1],
+            x[2] + offset * nrm[2] };
+          for (std::size_t b = b0; b < b1; ++b)
+          {
+            const vtkIdType j = todo[b];
+            const double* p = &lights[3 * j];
+            double e[3] = { 0, 0, 0 };
+            if (this->IncludeDirect)
+            {
+              // The geometry from x itself; the offset is the ray's alone.
+              const double w[3] = { p[0] - x[0], p[1] - x[1], p[2] - x[2] };
+              const double d2 = vtkMath::Dot(w, w);
+              const double c = vtkMath::Dot(nrm, w) / std::sqrt(std::max(d2, 1e-300));
+              if (c > 0.0 && !tracer.SegmentBlocked(o, p))
+              {
+                e[0] = e[1] = e[2] = c / std::max(d2, clamp2);
+              }
+            }
+            for (const auto& hit : hits[i])
+            {
+              const double y[3] = { hit.Position[0], hit.Position[1], hit.Position[2] };
+              const double w[3] = { p[0] - y[0], p[1] - y[1], p[2] - y[2] };
+              const double d2 = vtkMath::Dot(w, w);
+              const double c =
+                (hit.Normal[0] * w[0] + hit.Normal[1] * w[1] + hit.Normal[2] * w[2]) /
+                std::sqrt(std::max(d2, 1e-300));
+              if (c > 0.0 && !tracer.SegmentBlocked(y, p))
+              {
+                const double g = c / std::max(d2, clamp2) * invSamples;
+                for (int k = 0; k < 3; ++k)
+                {
+                  e[k] += hit.Albedo[k] * g;
+                }
+              }
+            }
+            float* out = cloud->GetResponse(j) + 3 * i;
+            for (int k = 0; k < 3; ++k)
+            {
+              out[k] = static_cast<float>(albedo[3 * i + k] / vtkMath::Pi() * e[k]);
+            }
+          }
+        }
+      });
+    std::vector<vtkIdType> finished(todo.begin() + static_cast<std::ptrdiff_t>(b0),
+      todo.begin() + static_cast<std::ptrdiff_t>(b1));
+    this->LightsTraced += static_cast<vtkIdType>(finished.size());
+    if (appendToCache && !proxygi::AppendLightCloudRecords(cachePath, cloud, finished, error))
+    {
+      vtkWarningMacro(<< error << "; going on without a cache.");
+      appendToCache = false;
+    }
+    this->UpdateProgress(0.05 + 0.95 * static_cast<double>(b1) / todo.size());
+  }
+  this->RayCount = static_cast<double>(tracer.GetRayCount());
+  timer->StopTimer();
+  this->Seconds = timer->GetElapsedTime();
+  if (this->GetAbortExecute())
+  {
+    // The lights not reached are zero: not a cloud to relight from.
+    vtkWarningMacro(<< "Aborted after " << this->LightsTraced + this->LightsFromCache << " of "
+                    << lightCount << " lights"
+                    << (appendToCache ? "; the cache resumes from there." : "."));
+    cloud->Initialize();
+  }
+  return 1;
+}
+
+void vtkPGILightCloudPrecompute::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const double* r = this->RegionOfInterest;
+  os << indent << "RegionOfInterest: " << r[0] << " " << r[1] << " " << r[2] << " " << r[3] << " "
+     << r[4] << " " << r[5] << "\n";
+  os << indent << "GridResolution: " << this->GridResolution[0] << " " << this->GridResolution[1]
+     << " " << this->GridResolution[2] << "\n";
+  os << indent
+     << "LightPositions: " << (this->LightPositions ? this->LightPositions->GetNumberOfPoints() : 0)
+     << "\n";
+  os << indent << "Samples: " << this->Samples << "\n";
+  os << indent << "IncludeDirect: " << this->IncludeDirect << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "ClampDistance: " << this->ClampDistance << "\n";
+  os << indent << "CacheFileName: " << (this->CacheFileName ? this->CacheFileName : "(none)")
+     << "\n";
+  os << indent << "LightsTraced: " << this->LightsTraced
+     << ", LightsFromCache: " << this->LightsFromCache << ", Seconds: " << this->Seconds << "\n";
+}

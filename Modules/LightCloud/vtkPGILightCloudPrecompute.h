@@ -1,0 +1,122 @@
+/**
+ * @class   vtkPGILightCloudPrecompute
+ * @brief   Builds a light cloud (Kristensen et al. 2005) on Embree: for each
+ *          cloud light, the exit radiance at every receiver vertex.
+ *
+ * Input 0: the receivers (vtkPolyData; point normals used if present,
+ * computed otherwise; "Albedo" RGB point array or DefaultAlbedo). They are
+ * part of the scene. Input 1 (optional, repeatable): other scene objects,
+ * which block and reflect light but get no response. Output: a
+ * vtkPGILightCloud.
+ *
+ * Cloud lights: the centres of a GridResolution grid of cells over
+ * RegionOfInterest (by default the scene's bounding box), or the points the
+ * user gives (SetLightPositions). Each is an isotropic point light of unit
+ * intensity. Per receiver x (normal n, albedo a) and light at p the
+ * response is a/pi (E_direct + E_indirect):
+ *  - E_direct = cos / d^2 when p is visible from x (with IncludeDirect on;
+ *    off by default, as the paper stores the indirect light only);
+ *  - E_indirect = 1/Samples sum over gather hits y of a(y) cos_y / d_y^2
+ *    when p is visible from y: Samples cosine-distributed rays per receiver
+ *    are traced once and their hits lit by every cloud light (the paper's
+ *    photon map with a final gather replaced by the final gather alone).
+ * Distances below ClampDistance (default: 1e-3 of the scene size) count as
+ * it, so a light almost on a surface stays finite.
+ *
+ * The receivers run in parallel (vtkSMPTools); progress and abort between
+ * blocks of cloud lights. With CacheFileName set the cloud is written there
+ * as lights finish, keyed by everything it depends on (geometry, albedo,
+ * normals, lights, settings): a later run with the same key reads it
+ * instead of tracing, and one that was stopped resumes from the lights
+ * already there. A cache for something else is replaced; a corrupted one is
+ * an error (delete it).
+ *
+ * Errors: no receivers, NaN/Inf points or light positions, an empty grid,
+ * a corrupted cache file.
+ */
+#ifndef vtkPGILightCloudPrecompute_h
+#define vtkPGILightCloudPrecompute_h
+
+#include "ProxyGILightCloudModule.h"
+#include "vtkAlgorithm.h"
+
+class vtkPGILightCloud;
+class vtkPoints;
+
+class PROXYGILIGHTCLOUD_EXPORT vtkPGILightCloudPrecompute : public vtkAlgorithm
+{
+public:
+  static vtkPGILightCloudPrecompute* New();
+  vtkTypeMacro(vtkPGILightCloudPrecompute, vtkAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The grid's box; an empty box (xmin >= xmax, the default) is the scene's.
+  vtkSetVector6Macro(RegionOfInterest, double);
+  vtkGetVector6Macro(RegionOfInterest, double);
+  vtkSetVector3Macro(GridResolution, int);
+  vtkGetVector3Macro(GridResolution, int);
+  /// Cloud lights where the user wants them (null: the grid).
+  virtual void SetLightPositions(vtkPoints* points);
+  vtkGetObjectMacro(LightPositions, vtkPoints);
+
+  /// Gather rays per receiver (indirect light).
+  vtkSetClampMacro(Samples, int, 1, 1 << 16);
+  vtkGetMacro(Samples, int);
+  vtkSetMacro(IncludeDirect, bool);
+  vtkGetMacro(IncludeDirect, bool);
+  vtkBooleanMacro(IncludeDirect, bool);
+  vtkSetMacro(Seed, unsigned int);
+  vtkGetMacro(Seed, unsigned int);
+  vtkSetVector3Macro(DefaultAlbedo, double);
+  vtkGetVector3Macro(DefaultAlbedo, double);
+  vtkSetStringMacro(AlbedoArrayName);
+  vtkGetStringMacro(AlbedoArrayName);
+  /// 0: 1e-3 of the scene's bounding-box diagonal.
+  vtkSetClampMacro(ClampDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ClampDistance, double);
+  vtkSetStringMacro(CacheFileName);
+  vtkGetStringMacro(CacheFileName);
+
+  /// The last update: lights traced, lights read from the cache, rays, seconds.
+  vtkGetMacro(LightsTraced, vtkIdType);
+  vtkGetMacro(LightsFromCache, vtkIdType);
+  vtkGetMacro(RayCount, double);
+  vtkGetMacro(Seconds, double);
+
+  vtkPGILightCloud* GetOutput();
+  void SetInputData(vtkDataObject* receivers) { this->SetInputDataInternal(0, receivers); }
+  void AddSceneObjectData(vtkDataObject* data) { this->AddInputDataInternal(1, data); }
+  void AddSceneObjectConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(1, output); }
+  void RemoveAllSceneObjects() { this->SetInputConnection(1, nullptr); }
+
+  vtkTypeBool ProcessRequest(
+    vtkInformation* request, vtkInformationVector** in, vtkInformationVector* out) override;
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkPGILightCloudPrecompute();
+  ~vtkPGILightCloudPrecompute() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
+
+  double RegionOfInterest[6] = { 0, -1, 0, -1, 0, -1 };
+  int GridResolution[3] = { 6, 6, 6 };
+  vtkPoints* LightPositions = nullptr;
+  int Samples = 64;
+  bool IncludeDirect = false;
+  unsigned int Seed = 1;
+  double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
+  char* AlbedoArrayName = nullptr;
+  double ClampDistance = 0.0;
+  char* CacheFileName = nullptr;
+  vtkIdType LightsTraced = 0, LightsFromCache = 0;
+  double RayCount = 0.0, Seconds = 0.0;
+
+private:
+  vtkPGILightCloudPrecompute(const vtkPGILightCloudPrecompute&) = delete;
+  void operator=(const vtkPGILightCloudPrecompute&) = delete;
+};
+
+#endif
