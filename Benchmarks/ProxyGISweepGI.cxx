@@ -17,26 +17,16 @@
 #include "vtkPGILighting.h"
 #include "vtkPGIOccluder.h"
 
-#include <vtkAxis.h>
-#include <vtkChartLegend.h>
-#include <vtkChartXY.h>
-#include <vtkContextScene.h>
-#include <vtkContextView.h>
+#include "pgiBenchPlot.h"
+
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
-#include <vtkPen.h>
-#include <vtkPlot.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataNormals.h>
-#include <vtkRenderWindow.h>
-#include <vtkRenderer.h>
 #include <vtkSMPTools.h>
-#include <vtkTable.h>
-#include <vtkWindowToImageFilter.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -508,18 +498,6 @@ int main(int argc, char* argv[])
   }
 
   // Plot: error against time, one series per knob (log-log).
-  vtkNew<vtkContextView> view;
-  view->GetRenderWindow()->SetOffScreenRendering(1);
-  view->GetRenderWindow()->SetSize(900, 600);
-  view->GetRenderer()->SetBackground(1, 1, 1);
-  vtkNew<vtkChartXY> chart;
-  view->GetScene()->AddItem(chart);
-  chart->SetShowLegend(true);
-  chart->GetAxis(vtkAxis::LEFT)->SetTitle("relative RMSE of radiance (%)");
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("time (s)");
-  chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
-  chart->SetTitle("ProxyGI per-vertex GI: accuracy against time (default scene)");
   std::vector<std::string> knobs;
   for (const Row& r : rows)
   {
@@ -528,41 +506,26 @@ int main(int argc, char* argv[])
       knobs.push_back(r.Knob);
     }
   }
-  const unsigned char palette[12][3] = { { 0, 0, 0 }, { 31, 119, 180 }, { 255, 127, 14 },
-    { 44, 160, 44 }, { 214, 39, 40 }, { 148, 103, 189 }, { 140, 86, 75 }, { 227, 119, 194 },
-    { 127, 127, 127 }, { 188, 189, 34 }, { 23, 190, 207 }, { 255, 187, 120 } };
-  std::vector<vtkSmartPointer<vtkTable>> tables;
-  for (std::size_t k = 0; k < knobs.size(); ++k)
+  std::vector<pgibench::Series> series;
+  for (const std::string& knob : knobs)
   {
-    auto table = vtkSmartPointer<vtkTable>::New();
-    vtkNew<vtkDoubleArray> x, y;
-    x->SetName("time");
-    y->SetName(knobs[k].c_str());
+    pgibench::Series s;
+    s.Name = knob;
+    s.Line = knob == "Embree reference";
     for (const Row& r : rows)
     {
-      if (r.Knob == knobs[k] || (r.Knob == "baseline" && knobs[k] != "Embree reference"))
+      if (r.Knob == knob || (r.Knob == "baseline" && knob != "Embree reference"))
       {
-        x->InsertNextValue(r.Seconds);
-        y->InsertNextValue(100 * r.ErrorTotal);
+        s.X.push_back(r.Seconds);
+        s.Y.push_back(100 * r.ErrorTotal);
       }
     }
-    table->AddColumn(x);
-    table->AddColumn(y);
-    tables.push_back(table);
-    vtkPlot* plot =
-      chart->AddPlot(knobs[k] == "Embree reference" ? vtkChart::LINE : vtkChart::POINTS);
-    plot->SetInputData(table, 0, 1);
-    const unsigned char* rgb = palette[k % 12];
-    plot->SetColor(rgb[0], rgb[1], rgb[2], 255);
-    plot->SetWidth(2.0);
+    series.push_back(s);
   }
-  view->GetRenderWindow()->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(view->GetRenderWindow());
-  vtkNew<vtkPNGWriter> png;
-  png->SetFileName((out + ".png").c_str());
-  png->SetInputConnection(grab->GetOutputPort());
-  png->Write();
+  pgibench::WritePlot(out + ".png",
+    { "ProxyGI per-vertex GI: accuracy against time (default scene)", "time (s)",
+      "relative RMSE of radiance (%)" },
+    series);
   std::printf("wrote %s.md, %s.csv, %s.png\n", out.c_str(), out.c_str(), out.c_str());
   return 0;
 }

@@ -60,6 +60,11 @@ bool WriteRecord(std::ofstream& out, vtkPGILightCloud* cloud, vtkIdType light)
 bool WriteLightCloudHeader(
   const std::string& path, vtkPGILightCloud* cloud, std::uint64_t key, std::string& error)
 {
+  if (cloud->IsCompressed())
+  {
+    error = "a compressed light cloud is not written as a dense cloud file ('" + path + "')";
+    return false;
+  }
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out)
   {

@@ -19,6 +19,7 @@ vtkStandardNewMacro(vtkPGILightCloud);
 vtkPGILightCloud::vtkPGILightCloud()
   : Positions(vtkSmartPointer<vtkPoints>::New())
   , Response(std::make_shared<std::vector<float>>())
+  , Zones(std::make_shared<std::vector<Zone>>())
 {
   this->Positions->SetDataTypeToDouble();
 }
@@ -39,8 +40,30 @@ void vtkPGILightCloud::Allocate(vtkIdType lights, vtkIdType receivers)
   this->Receivers = receivers;
   this->Response =
     std::make_shared<std::vector<float>>(static_cast<std::size_t>(3 * lights * receivers), 0.0f);
+  this->Zones = std::make_shared<std::vector<Zone>>();
   this->Spacing = -1.0;
   this->Modified();
+}
+
+void vtkPGILightCloud::SetZones(std::vector<Zone> zones)
+{
+  this->Zones = std::make_shared<std::vector<Zone>>(std::move(zones));
+  this->Response = std::make_shared<std::vector<float>>();
+  this->Modified();
+}
+
+double vtkPGILightCloud::GetCoefficientsPerReceiver() const
+{
+  if (!this->IsCompressed())
+  {
+    return 3.0 * this->GetNumberOfLights();
+  }
+  double weights = 0.0;
+  for (const Zone& zone : *this->Zones)
+  {
+    weights += static_cast<double>(zone.Weights.size());
+  }
+  return this->Receivers > 0 ? weights / this->Receivers + 1.0 : 0.0;
 }
 
 vtkIdType vtkPGILightCloud::GetNumberOfLights() const
@@ -50,12 +73,12 @@ vtkIdType vtkPGILightCloud::GetNumberOfLights() const
 
 float* vtkPGILightCloud::GetResponse(vtkIdType light)
 {
-  return this->Response->data() + 3 * light * this->Receivers;
+  return this->Response->empty() ? nullptr : this->Response->data() + 3 * light * this->Receivers;
 }
 
 const float* vtkPGILightCloud::GetResponse(vtkIdType light) const
 {
-  return this->Response->data() + 3 * light * this->Receivers;
+  return this->Response->empty() ? nullptr : this->Response->data() + 3 * light * this->Receivers;
 }
 
 std::uint64_t vtkPGILightCloud::ReceiverKeyOf(vtkPolyData* receivers)
@@ -138,8 +161,16 @@ void vtkPGILightCloud::GetLightBounds(double bounds[6]) const
 
 unsigned long vtkPGILightCloud::GetActualMemorySize()
 {
-  const std::size_t bytes = this->Response->size() * sizeof(float) +
+  std::size_t bytes = this->Response->size() * sizeof(float) +
     static_cast<std::size_t>(this->GetNumberOfLights()) * 3 * sizeof(double);
+  for (const Zone& z : *this->Zones)
+  {
+    bytes += z.Receivers.size() * sizeof(vtkIdType) + z.Lights.size() * sizeof(double) +
+      (z.LightMembers.size() + z.Cluster.size() + z.BasisStart.size() + z.BasisCount.size() +
+        z.WeightStart.size()) *
+        sizeof(int) +
+      (z.Means.size() + z.Basis.size() + z.Weights.size()) * sizeof(float);
+  }
   return static_cast<unsigned long>(bytes / 1024) + this->Superclass::GetActualMemorySize();
 }
 
@@ -159,6 +190,7 @@ void vtkPGILightCloud::ShallowCopy(vtkDataObject* source)
   {
     this->Positions = cloud->Positions;
     this->Response = cloud->Response;
+    this->Zones = cloud->Zones;
     this->Receivers = cloud->Receivers;
     this->Contents = cloud->Contents;
     this->Samples = cloud->Samples;
@@ -175,6 +207,7 @@ void vtkPGILightCloud::DeepCopy(vtkDataObject* source)
     this->Positions = vtkSmartPointer<vtkPoints>::New();
     this->Positions->DeepCopy(cloud->Positions);
     this->Response = std::make_shared<std::vector<float>>(*cloud->Response);
+    this->Zones = std::make_shared<std::vector<Zone>>(*cloud->Zones);
     this->Receivers = cloud->Receivers;
     this->Contents = cloud->Contents;
     this->Samples = cloud->Samples;
@@ -201,5 +234,6 @@ void vtkPGILightCloud::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Contents: "
      << (this->Contents == DirectAndIndirect ? "direct and indirect" : "indirect only") << "\n";
   os << indent << "Samples: " << this->Samples << "\n";
+  os << indent << "Zones: " << this->Zones->size() << "\n";
   os << indent << "CoefficientsPerReceiver: " << this->GetCoefficientsPerReceiver() << "\n";
 }

@@ -51,7 +51,8 @@ public:
   vtkIdType GetNumberOfReceivers() const { return this->Receivers; }
   /// The cloud lights' positions (one point per light).
   vtkPoints* GetLightPositions() const { return this->Positions; }
-  /// Light j's response: 3 x receivers floats (RGB per receiver).
+  /// Light j's response: 3 x receivers floats (RGB per receiver); null
+  /// once compressed.
   float* GetResponse(vtkIdType light);
   const float* GetResponse(vtkIdType light) const;
 
@@ -75,8 +76,52 @@ public:
   /// The lights' bounding box (xmin, xmax, ymin, ...).
   void GetLightBounds(double bounds[6]) const;
 
-  /// Stored coefficients per receiver (3 x lights, uncompressed).
-  vtkIdType GetCoefficientsPerReceiver() const { return 3 * this->GetNumberOfLights(); }
+#ifndef __VTK_WRAP__
+  /**
+   * The compressed form (section 5 of the paper): the receivers split into
+   * zones; per zone its own cluster lights (merged from the dense cloud)
+   * and, per receiver, a clustered-PCA code of its response to them: the
+   * response vector x (3 x zone lights, RGB per light) is approximated as
+   * Means[c] + sum_i Weights[i] Basis[c][i] for the receiver's PCA
+   * cluster c.
+   */
+  struct Zone
+  {
+    std::vector<vtkIdType> Receivers; // ids into the receivers
+    std::vector<double> Lights;       // cluster lights, xyz each
+    std::vector<int> LightMembers;    // dense lights merged into each
+    int Dimension = 0;                // 3 x cluster lights
+    std::vector<int> Cluster;         // PCA cluster of each zone receiver
+    std::vector<float> Means;         // clusters x Dimension
+    std::vector<int> BasisStart;      // per PCA cluster, in vectors
+    std::vector<int> BasisCount;      // vectors per PCA cluster
+    std::vector<float> Basis;         // all vectors x Dimension
+    std::vector<int> WeightStart;     // per zone receiver
+    std::vector<float> Weights;       // BasisCount[Cluster[r]] per receiver
+  };
+  /// Replaces the dense responses by zones (the positions stay: they are
+  /// the dense cloud's, for bounds and spacing).
+  void SetZones(std::vector<Zone> zones);
+  const std::vector<Zone>& GetZones() const
+  {
+    return *this->Zones;
+  }
+#endif
+  /// Whether it holds zones (compressed) rather than dense responses.
+  bool IsCompressed() const
+  {
+    return !this->Zones->empty();
+  }
+  vtkIdType GetNumberOfZones() const
+  {
+    return static_cast<vtkIdType>(this->Zones->size());
+  }
+
+  /**
+   * Stored coefficients per receiver: 3 x lights dense; compressed, the
+   * mean over receivers of their PCA weights plus one (the cluster index).
+   */
+  double GetCoefficientsPerReceiver() const;
   /// Kibibytes held (vtkDataObject's convention).
   unsigned long GetActualMemorySize() override;
 
@@ -94,6 +139,7 @@ protected:
   vtkSmartPointer<vtkPoints> Positions;
   // Shared between shallow copies; light-major, then receiver, then RGB.
   std::shared_ptr<std::vector<float>> Response;
+  std::shared_ptr<std::vector<Zone>> Zones;
   vtkIdType Receivers = 0;
   int Contents = IndirectOnly;
   int Samples = 0;

@@ -1,5 +1,6 @@
 #include "vtkPGILightCloudPrecompute.h"
 
+#include "pgiLightCloudCompression.h"
 #include "pgiLightCloudFile.h"
 #include "pgiMaterial.h"
 #include "pgiReferenceScene.h"
@@ -268,10 +269,80 @@ int vtkPGILightCloudPrecompute::RequestData(
       }
     }
   }
+  if (lights.empty())
+  {
+    vtkErrorMacro(<< "No cloud lights: the light positions are empty.");
+    return 0;
+  }
+
+  // The scene on Embree.
+  std::string error;
+  proxygi::ReferenceTracer tracer;
+  bool ok =
+    proxygi::AddPolyData(tracer, receivers, this->DefaultAlbedo, this->AlbedoArrayName, error);
+  for (std::size_t c = 0; ok && c < objects.size(); ++c)
+  {
+    ok =
+      proxygi::AddPolyData(tracer, objects[c], this->DefaultAlbedo, this->AlbedoArrayName, error);
+  }
+  ok = ok && tracer.Commit(error);
+  if (!ok)
+  {
+    vtkErrorMacro(<< "Cannot build the scene: " << error);
+    return 0;
+  }
+
+  // Lights inside solids light nothing; lights almost on a surface have a
+  // response too peaked to interpolate (1/d^2): both are left out.
+  double margin = this->SurfaceMargin;
+  if (margin < 0.0)
+  {
+    double spacing = 0.0;
+    if (this->LightPositions)
+    {
+      vtkNew<vtkPGILightCloud> probe;
+      probe->Allocate(static_cast<vtkIdType>(lights.size() / 3), 0);
+      for (std::size_t j = 0; j < lights.size() / 3; ++j)
+      {
+        probe->GetLightPositions()->SetPoint(static_cast<vtkIdType>(j), &lights[3 * j]);
+      }
+      spacing = probe->GetSpacing();
+    }
+    else
+    {
+      const double* r = this->RegionOfInterest;
+      const bool own = r[0] < r[1] && r[2] < r[3] && r[4] < r[5];
+      const double* region = own ? r : box;
+      spacing = VTK_DOUBLE_MAX;
+      for (int a = 0; a < 3; ++a)
+      {
+        spacing = std::min(spacing, (region[2 * a + 1] - region[2 * a]) / this->GridResolution[a]);
+      }
+    }
+    margin = 0.25 * spacing;
+  }
+  this->LightsDropped = 0;
+  if (margin > 0.0)
+  {
+    std::vector<double> kept;
+    for (std::size_t j = 0; j < lights.size() / 3; ++j)
+    {
+      const proxygi::ReferenceTracer::PointPlace place = tracer.PlacePoint(&lights[3 * j], 26);
+      if (place.Inside || place.NearestHit < margin)
+      {
+        ++this->LightsDropped;
+        continue;
+      }
+      kept.insert(kept.end(), &lights[3 * j], &lights[3 * j] + 3);
+    }
+    lights.swap(kept);
+  }
   const vtkIdType lightCount = static_cast<vtkIdType>(lights.size() / 3);
   if (lightCount == 0)
   {
-    vtkErrorMacro(<< "No cloud lights: the light positions are empty.");
+    vtkErrorMacro(<< "No cloud lights left: all " << this->LightsDropped
+                  << " lie inside solids or nearer a surface than SurfaceMargin (" << margin
+                  << ").");
     return 0;
   }
 
@@ -335,7 +406,6 @@ int vtkPGILightCloudPrecompute::RequestData(
   // The cache: whole, partial (resume) or for something else (replace).
   std::vector<char> done(static_cast<std::size_t>(lightCount), 0);
   const std::string cachePath = this->CacheFileName ? this->CacheFileName : "";
-  std::string error;
   bool appendToCache = false;
   if (!cachePath.empty() && FileExists(cachePath))
   {
@@ -401,21 +471,6 @@ int vtkPGILightCloudPrecompute::RequestData(
     return 1;
   }
 
-  // The scene on Embree.
-  proxygi::ReferenceTracer tracer;
-  bool ok =
-    proxygi::AddPolyData(tracer, receivers, this->DefaultAlbedo, this->AlbedoArrayName, error);
-  for (std::size_t c = 0; ok && c < objects.size(); ++c)
-  {
-    ok =
-      proxygi::AddPolyData(tracer, objects[c], this->DefaultAlbedo, this->AlbedoArrayName, error);
-  }
-  ok = ok && tracer.Commit(error);
-  if (!ok)
-  {
-    vtkErrorMacro(<< "Cannot build the scene: " << error);
-    return 0;
-  }
   const double offset = tracer.GetRayOffset();
 
   // Gather hits once per receiver; every light then lights the same hits,
@@ -445,6 +500,46 @@ int vtkPGILightCloudPrecompute::RequestData(
   }
   const double clamp2 = clamp * clamp;
   const double invSamples = 1.0 / this->Samples;
+  // Receiver i's exit radiance from a unit point light at p.
+  auto response = [&](const double* p, vtkIdType i, float* out)
+  {
+    double x[3];
+    receivers->GetPoint(i, x);
+    const double* nrm = &normal[3 * i];
+    const double o[3] = { x[0] + offset * nrm[0], x[1] + offset * nrm[1], x[2] + offset * nrm[2] };
+    double e[3] = { 0, 0, 0 };
+    if (this->IncludeDirect)
+    {
+      // The geometry from x itself; the offset is the ray's alone.
+      const double w[3] = { p[0] - x[0], p[1] - x[1], p[2] - x[2] };
+      const double d2 = vtkMath::Dot(w, w);
+      const double c = vtkMath::Dot(nrm, w) / std::sqrt(std::max(d2, 1e-300));
+      if (c > 0.0 && !tracer.SegmentBlocked(o, p))
+      {
+        e[0] = e[1] = e[2] = c / std::max(d2, clamp2);
+      }
+    }
+    for (const auto& hit : hits[i])
+    {
+      const double y[3] = { hit.Position[0], hit.Position[1], hit.Position[2] };
+      const double w[3] = { p[0] - y[0], p[1] - y[1], p[2] - y[2] };
+      const double d2 = vtkMath::Dot(w, w);
+      const double c = (hit.Normal[0] * w[0] + hit.Normal[1] * w[1] + hit.Normal[2] * w[2]) /
+        std::sqrt(std::max(d2, 1e-300));
+      if (c > 0.0 && !tracer.SegmentBlocked(y, p))
+      {
+        const double g = c / std::max(d2, clamp2) * invSamples;
+        for (int k = 0; k < 3; ++k)
+        {
+          e[k] += hit.Albedo[k] * g;
+        }
+      }
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      out[k] = static_cast<float>(albedo[3 * i + k] / vtkMath::Pi() * e[k]);
+    }
+  };
   const std::size_t block = 4;
   for (std::size_t b0 = 0; b0 < todo.size() && !this->GetAbortExecute(); b0 += block)
   {
@@ -454,49 +549,9 @@ int vtkPGILightCloudPrecompute::RequestData(
       {
         for (vtkIdType i = first; i < last; ++i)
         {
-          double x[3];
-          receivers->GetPoint(i, x);
-          const double* nrm = &normal[3 * i];
-          const double o[3] = { x[0] + offset * nrm[0], x[1] + offset * nrm[1],
-            x[2] + offset * nrm[2] };
           for (std::size_t b = b0; b < b1; ++b)
           {
-            const vtkIdType j = todo[b];
-            const double* p = &lights[3 * j];
-            double e[3] = { 0, 0, 0 };
-            if (this->IncludeDirect)
-            {
-              // The geometry from x itself; the offset is the ray's alone.
-              const double w[3] = { p[0] - x[0], p[1] - x[1], p[2] - x[2] };
-              const double d2 = vtkMath::Dot(w, w);
-              const double c = vtkMath::Dot(nrm, w) / std::sqrt(std::max(d2, 1e-300));
-              if (c > 0.0 && !tracer.SegmentBlocked(o, p))
-              {
-                e[0] = e[1] = e[2] = c / std::max(d2, clamp2);
-              }
-            }
-            for (const auto& hit : hits[i])
-            {
-              const double y[3] = { hit.Position[0], hit.Position[1], hit.Position[2] };
-              const double w[3] = { p[0] - y[0], p[1] - y[1], p[2] - y[2] };
-              const double d2 = vtkMath::Dot(w, w);
-              const double c =
-                (hit.Normal[0] * w[0] + hit.Normal[1] * w[1] + hit.Normal[2] * w[2]) /
-                std::sqrt(std::max(d2, 1e-300));
-              if (c > 0.0 && !tracer.SegmentBlocked(y, p))
-              {
-                const double g = c / std::max(d2, clamp2) * invSamples;
-                for (int k = 0; k < 3; ++k)
-                {
-                  e[k] += hit.Albedo[k] * g;
-                }
-              }
-            }
-            float* out = cloud->GetResponse(j) + 3 * i;
-            for (int k = 0; k < 3; ++k)
-            {
-              out[k] = static_cast<float>(albedo[3 * i + k] / vtkMath::Pi() * e[k]);
-            }
+            response(&lights[3 * todo[b]], i, cloud->GetResponse(todo[b]) + 3 * i);
           }
         }
       });
@@ -510,9 +565,6 @@ int vtkPGILightCloudPrecompute::RequestData(
     }
     this->UpdateProgress(0.05 + 0.95 * static_cast<double>(b1) / todo.size());
   }
-  this->RayCount = static_cast<double>(tracer.GetRayCount());
-  timer->StopTimer();
-  this->Seconds = timer->GetElapsedTime();
   if (this->GetAbortExecute())
   {
     // The lights not reached are zero: not a cloud to relight from.
@@ -521,7 +573,151 @@ int vtkPGILightCloudPrecompute::RequestData(
                     << (appendToCache ? "; the cache resumes from there." : "."));
     cloud->Initialize();
   }
+  else if (this->Compress)
+  {
+    vtkNew<vtkTimerLog> compressTimer;
+    compressTimer->StartTimer();
+    this->CompressCloud(cloud, receivers, lights, tracer, response);
+    compressTimer->StopTimer();
+    this->CompressionSeconds = compressTimer->GetElapsedTime();
+  }
+  this->RayCount = static_cast<double>(tracer.GetRayCount());
+  timer->StopTimer();
+  this->Seconds = timer->GetElapsedTime();
   return 1;
+}
+
+void vtkPGILightCloudPrecompute::CompressCloud(vtkPGILightCloud* cloud, vtkPolyData* receivers,
+  const std::vector<double>& lights, const proxygi::ReferenceTracer& tracer,
+  const std::function<void(const double*, vtkIdType, float*)>& response)
+{
+  const vtkIdType n = receivers->GetNumberOfPoints();
+  const vtkIdType lightCount = static_cast<vtkIdType>(lights.size() / 3);
+  const std::size_t nl = static_cast<std::size_t>(lightCount);
+  std::vector<double> points(static_cast<std::size_t>(3 * n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    receivers->GetPoint(i, &points[3 * i]);
+  }
+  const auto zoneIds = proxygi::SplitIntoZones(points, this->ZoneSize, this->MaximumZones);
+  const double mergeDistance =
+    this->MergeDistance > 0.0 ? this->MergeDistance : 2.0 * cloud->GetSpacing();
+  const double w1 = mergeDistance > 0.0 ? 1.0 / mergeDistance : 0.0;
+
+  // Mutual visibility of the lights close enough to merge (V_jk).
+  std::vector<char> visible(nl * nl, 0);
+  vtkSMPTools::For(0, lightCount,
+    [&](vtkIdType first, vtkIdType last)
+    {
+      for (vtkIdType j = first; j < last; ++j)
+      {
+        visible[j * nl + j] = 1;
+        for (vtkIdType k = j + 1; k < lightCount; ++k)
+        {
+          const double* p = &lights[3 * j];
+          const double* q = &lights[3 * k];
+          const double d2 = vtkMath::Distance2BetweenPoints(p, q);
+          if (w1 * std::sqrt(d2) < 1.0 && !tracer.SegmentBlocked(p, q))
+          {
+            visible[j * nl + k] = 1;
+          }
+        }
+      }
+    });
+  for (std::size_t j = 0; j < nl; ++j)
+  {
+    for (std::size_t k = 0; k < j; ++k)
+    {
+      visible[j * nl + k] = visible[k * nl + j];
+    }
+  }
+
+  std::vector<vtkPGILightCloud::Zone> zones;
+  this->CompressedLights = 0.0;
+  double squaredError = 0.0, squared = 0.0;
+  for (std::size_t z = 0; z < zoneIds.size() && !this->GetAbortExecute(); ++z)
+  {
+    vtkPGILightCloud::Zone zone;
+    zone.Receivers = zoneIds[z];
+    const vtkIdType r = static_cast<vtkIdType>(zone.Receivers.size());
+    // The zone's dense responses, light-major.
+    std::vector<std::vector<float>> dense(nl, std::vector<float>(static_cast<std::size_t>(3 * r)));
+    double largest = 0.0;
+    for (std::size_t j = 0; j < nl; ++j)
+    {
+      const float* all = cloud->GetResponse(static_cast<vtkIdType>(j));
+      for (vtkIdType c = 0; c < r; ++c)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          dense[j][3 * c + k] = all[3 * zone.Receivers[c] + k];
+          largest = std::max(largest, static_cast<double>(std::fabs(dense[j][3 * c + k])));
+        }
+      }
+    }
+    std::vector<const float*> pointers(nl);
+    for (std::size_t j = 0; j < nl; ++j)
+    {
+      pointers[j] = dense[j].data();
+    }
+    const double w2 = largest > 0.0 ? 1.0 / (this->MergeTolerance * largest) : 0.0;
+    const proxygi::MergedLights merged =
+      proxygi::ClusterLights(pointers, lights, r, w1, w2, visible);
+    const int k = static_cast<int>(merged.Members.size());
+    zone.Lights = merged.Positions;
+    for (const auto& members : merged.Members)
+    {
+      zone.LightMembers.push_back(static_cast<int>(members.size()));
+    }
+    // Rows: per receiver, RGB per cluster light.
+    zone.Dimension = 3 * k;
+    std::vector<float> rows(static_cast<std::size_t>(r) * zone.Dimension, 0.0f);
+    vtkSMPTools::For(0, r,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType c = first; c < last; ++c)
+        {
+          float* row = &rows[static_cast<std::size_t>(c) * zone.Dimension];
+          for (int q = 0; q < k; ++q)
+          {
+            const auto& members = merged.Members[q];
+            if (this->MergedResponse == RECOMPUTED_RESPONSE && members.size() > 1)
+            {
+              response(&zone.Lights[3 * q], zone.Receivers[c], row + 3 * q);
+              continue;
+            }
+            for (vtkIdType m : members)
+            {
+              for (int a = 0; a < 3; ++a)
+              {
+                row[3 * q + a] += dense[m][3 * c + a] / static_cast<float>(members.size());
+              }
+            }
+          }
+        }
+      });
+    const proxygi::ClusteredPCACode code = proxygi::ClusteredPCA(rows, r, zone.Dimension,
+      this->PCAClusters, this->VectorsPerReceiver, this->PCAIterations, this->Seed + z);
+    zone.Cluster = code.Cluster;
+    zone.Means = code.Means;
+    zone.BasisStart = code.BasisStart;
+    zone.BasisCount = code.BasisCount;
+    zone.Basis = code.Basis;
+    zone.WeightStart = code.WeightStart;
+    zone.Weights = code.Weights;
+    squaredError += code.SquaredError;
+    squared += code.Squared;
+    this->CompressedLights += static_cast<double>(k) * r / n;
+    zones.push_back(std::move(zone));
+    this->UpdateProgress(0.95 + 0.05 * static_cast<double>(z + 1) / zoneIds.size());
+  }
+  if (this->GetAbortExecute())
+  {
+    vtkWarningMacro(<< "Aborted while compressing; the output is the dense cloud.");
+    return;
+  }
+  this->PCARelativeError = squared > 0.0 ? std::sqrt(squaredError / squared) : 0.0;
+  cloud->SetZones(std::move(zones));
 }
 
 void vtkPGILightCloudPrecompute::PrintSelf(ostream& os, vtkIndent indent)

@@ -40,8 +40,16 @@
 #include "ProxyGILightCloudModule.h"
 #include "vtkAlgorithm.h"
 
+#include <functional>
+#include <vector>
+
 class vtkPGILightCloud;
 class vtkPoints;
+class vtkPolyData;
+namespace proxygi
+{
+class ReferenceTracer;
+}
 
 class PROXYGILIGHTCLOUD_EXPORT vtkPGILightCloudPrecompute : public vtkAlgorithm
 {
@@ -71,11 +79,61 @@ public:
   vtkGetVector3Macro(DefaultAlbedo, double);
   vtkSetStringMacro(AlbedoArrayName);
   vtkGetStringMacro(AlbedoArrayName);
+  /**
+   * Cloud lights inside a solid (PlacePoint: every ray hits, most from
+   * behind) or nearer a surface than this are left out: the first light
+   * nothing, the second have responses too peaked (1/d^2) to interpolate
+   * between. Negative (the default): a quarter of the grid's cell (or of the
+   * given lights' spacing); 0: keep every light.
+   */
+  vtkSetMacro(SurfaceMargin, double);
+  vtkGetMacro(SurfaceMargin, double);
+  /// Lights the last update left out by SurfaceMargin.
+  vtkGetMacro(LightsDropped, vtkIdType);
   /// 0: 1e-3 of the scene's bounding-box diagonal.
   vtkSetClampMacro(ClampDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(ClampDistance, double);
   vtkSetStringMacro(CacheFileName);
   vtkGetStringMacro(CacheFileName);
+
+  /// Compression (off: the output holds the dense responses).
+  vtkSetMacro(Compress, bool);
+  vtkGetMacro(Compress, bool);
+  vtkBooleanMacro(Compress, bool);
+  /// Zoning: a zone is split while it holds more receivers, up to MaximumZones.
+  vtkSetClampMacro(ZoneSize, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(ZoneSize, vtkIdType);
+  vtkSetClampMacro(MaximumZones, int, 1, 4096);
+  vtkGetMacro(MaximumZones, int);
+  /// Light clustering: w1 = 1 / MergeDistance (0: twice the cloud's
+  /// spacing), w2 = 1 / (MergeTolerance x the zone's largest response).
+  vtkSetClampMacro(MergeDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MergeDistance, double);
+  vtkSetClampMacro(MergeTolerance, double, 1e-9, VTK_DOUBLE_MAX);
+  vtkGetMacro(MergeTolerance, double);
+  enum MergedResponses
+  {
+    AVERAGED_RESPONSE = 0,
+    RECOMPUTED_RESPONSE = 1
+  };
+  /// A merged light's response: its members' mean, or traced anew at its
+  /// mean position (the paper's higher-quality option).
+  vtkSetClampMacro(MergedResponse, int, AVERAGED_RESPONSE, RECOMPUTED_RESPONSE);
+  vtkGetMacro(MergedResponse, int);
+  /// Clustered PCA per zone: clusters, the mean number of PCA vectors per
+  /// receiver, reclustering passes.
+  vtkSetClampMacro(PCAClusters, int, 1, 4096);
+  vtkGetMacro(PCAClusters, int);
+  vtkSetClampMacro(VectorsPerReceiver, double, 0.0, 4096.0);
+  vtkGetMacro(VectorsPerReceiver, double);
+  vtkSetClampMacro(PCAIterations, int, 0, 1000);
+  vtkGetMacro(PCAIterations, int);
+  /// The last compression: cluster lights per zone (weighted by the zone's
+  /// receivers), the CPCA's relative RMS error against the clustered
+  /// responses, seconds.
+  vtkGetMacro(CompressedLights, double);
+  vtkGetMacro(PCARelativeError, double);
+  vtkGetMacro(CompressionSeconds, double);
 
   /// The last update: lights traced, lights read from the cache, rays, seconds.
   vtkGetMacro(LightsTraced, vtkIdType);
@@ -100,6 +158,9 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
+  void CompressCloud(vtkPGILightCloud* cloud, vtkPolyData* receivers,
+    const std::vector<double>& lights, const proxygi::ReferenceTracer& tracer,
+    const std::function<void(const double*, vtkIdType, float*)>& response);
 
   double RegionOfInterest[6] = { 0, -1, 0, -1, 0, -1 };
   int GridResolution[3] = { 6, 6, 6 };
@@ -110,7 +171,19 @@ protected:
   double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
   char* AlbedoArrayName = nullptr;
   double ClampDistance = 0.0;
+  double SurfaceMargin = -1.0;
+  vtkIdType LightsDropped = 0;
   char* CacheFileName = nullptr;
+  bool Compress = false;
+  vtkIdType ZoneSize = 1000;
+  int MaximumZones = 64;
+  double MergeDistance = 0.0;
+  double MergeTolerance = 0.1;
+  int MergedResponse = AVERAGED_RESPONSE;
+  int PCAClusters = 8;
+  double VectorsPerReceiver = 8.0;
+  int PCAIterations = 25;
+  double CompressedLights = 0.0, PCARelativeError = 0.0, CompressionSeconds = 0.0;
   vtkIdType LightsTraced = 0, LightsFromCache = 0;
   double RayCount = 0.0, Seconds = 0.0;
 

@@ -19,6 +19,7 @@
 #include "vtkStaticPointLocator.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -187,185 +188,181 @@ int vtkPGILightCloudRelight::RequestData(
   this->FadeStarted = true;
   this->Fading = false;
 
-  vtkNew<vtkPolyData> lightPoints;
-  lightPoints->SetPoints(cloud->GetLightPositions());
-  vtkNew<vtkStaticPointLocator> locator;
-  locator->SetDataSet(lightPoints);
-  locator->BuildLocator();
   const double spacing = cloud->GetSpacing();
   double box[6];
   cloud->GetLightBounds(box);
   const double margin = 0.5 * spacing + 1e-9 * (1.0 + std::fabs(box[1]) + std::fabs(box[3]));
-
-  // The total weight vector, per colour.
-  std::vector<double> weights(static_cast<std::size_t>(3 * lightCount), 0.0);
-  std::vector<char> used(static_cast<std::size_t>(lightCount), 0);
-  vtkNew<vtkIdList> nearest, within;
-  const int rays = this->VisibilityRays;
-  std::vector<float> origins(3 * rays), directions(3 * rays), lengths(rays);
-  std::vector<unsigned char> blocked(rays);
+  std::vector<char> inside(this->Lights.size(), 1);
   for (std::size_t k = 0; k < this->Lights.size(); ++k)
   {
-    const UserLight& light = this->Lights[k];
-    const double* l = light.Position;
-    bool inside = true;
+    const double* l = this->Lights[k].Position;
     for (int a = 0; a < 3; ++a)
     {
-      inside = inside && l[a] >= box[2 * a] - margin && l[a] <= box[2 * a + 1] + margin;
+      inside[k] = inside[k] && l[a] >= box[2 * a] - margin && l[a] <= box[2 * a + 1] + margin;
     }
-    if (!inside)
+    if (!inside[k])
     {
       ++this->LightsOutside;
-      this->Fade[k].clear();
       vtkWarningMacro(<< "User light " << k << " at (" << l[0] << ", " << l[1] << ", " << l[2]
                       << ") lies outside the light cloud: it adds no cloud light (direct light "
                          "only, from the soft-shadow route).");
-      continue;
-    }
-    locator->FindClosestNPoints(
-      static_cast<int>(std::min<vtkIdType>(this->NeighborCount, lightCount)), l, nearest);
-    double farthest = 0.0;
-    for (vtkIdType q = 0; q < nearest->GetNumberOfIds(); ++q)
-    {
-      double p[3];
-      cloud->GetLightPositions()->GetPoint(nearest->GetId(q), p);
-      farthest = std::max(farthest, std::sqrt(vtkMath::Distance2BetweenPoints(l, p)));
-    }
-    const double r = this->RadiusScale * farthest;
-    if (r > 0.0)
-    {
-      locator->FindPointsWithinRadius(r, l, within);
-    }
-    else
-    {
-      within->DeepCopy(nearest);
-    }
-
-    std::map<vtkIdType, double> next;
-    double kernelSum = 0.0, weightedSum = 0.0;
-    std::vector<std::pair<vtkIdType, double>> kernel;
-    for (vtkIdType q = 0; q < within->GetNumberOfIds(); ++q)
-    {
-      const vtkIdType j = within->GetId(q);
-      double p[3];
-      cloud->GetLightPositions()->GetPoint(j, p);
-      const double d = std::sqrt(vtkMath::Distance2BetweenPoints(l, p));
-      const double u = r > 0.0 ? std::max(0.0, 1.0 - d / r) : 1.0;
-      const double w = u * u * u * u;
-      if (!(w > 0.0))
-      {
-        continue;
-      }
-      // Visibility: the fraction of rays from l that reach around p.
-      double target = 1.0;
-      if (this->Occluder)
-      {
-        for (int q2 = 0; q2 < rays; ++q2)
-        {
-          double t[3] = { p[0], p[1], p[2] };
-          if (q2 > 0)
-          {
-            double dir[3];
-            SpreadDirection(q2 - 1, rays - 1, dir);
-            for (int a = 0; a < 3; ++a)
-            {
-              t[a] += 0.25 * spacing * dir[a];
-            }
-          }
-          double v[3] = { t[0] - l[0], t[1] - l[1], t[2] - l[2] };
-          const double len = std::sqrt(vtkMath::Dot(v, v));
-          for (int a = 0; a < 3; ++a)
-          {
-            origins[3 * q2 + a] = static_cast<float>(l[a]);
-            directions[3 * q2 + a] = static_cast<float>(len > 0.0 ? v[a] / len : 0.0);
-          }
-          lengths[q2] = static_cast<float>(len);
-          if (!(len > 0.0))
-          {
-            directions[3 * q2 + 2] = 1.0f;
-          }
-        }
-        this->Occluder->OccludedSegments(
-          rays, origins.data(), directions.data(), lengths.data(), 0.0f, blocked.data());
-        int open = 0;
-        for (int q2 = 0; q2 < rays; ++q2)
-        {
-          open += blocked[q2] ? 0 : 1;
-        }
-        target = static_cast<double>(open) / rays;
-      }
-      // The fade: a light already weighted moves toward its target; one
-      // that just entered the kernel (weight ~0 there) starts at it.
-      double f = target;
-      auto previous = this->Fade[k].find(j);
-      if (previous != this->Fade[k].end())
-      {
-        const double delta = target - previous->second;
-        f = previous->second + std::max(-fadeStep, std::min(fadeStep, delta));
-      }
-      if (std::fabs(f - target) > 1e-12)
-      {
-        this->Fading = true;
-      }
-      next[j] = f;
-      kernelSum += w;
-      weightedSum += w * f;
-      kernel.emplace_back(j, w * f);
-    }
-    this->Fade[k] = std::move(next);
-    const double norm = std::max(weightedSum, 0.05 * kernelSum);
-    if (!(norm > 0.0))
-    {
-      vtkWarningMacro(<< "User light " << k << ": no cloud light near it is visible from it.");
-      continue;
-    }
-    for (const auto& [j, w] : kernel)
-    {
-      if (w > 0.0)
-      {
-        used[j] = 1;
-        for (int c = 0; c < 3; ++c)
-        {
-          weights[3 * j + c] += w / norm * light.Intensity[c];
-        }
-      }
     }
   }
 
-  std::vector<vtkIdType> active;
-  for (vtkIdType j = 0; j < lightCount; ++j)
+  // The cloud lights' sets: the dense cloud's, or each zone's own.
+  if (this->LocatorCloud != cloud || this->LocatorTime < cloud->GetMTime())
   {
-    if (used[j])
+    this->Locators.clear();
+    auto build = [this](vtkPoints* points)
     {
-      active.push_back(j);
+      vtkNew<vtkPolyData> set;
+      set->SetPoints(points);
+      auto locator = vtkSmartPointer<vtkStaticPointLocator>::New();
+      locator->SetDataSet(set);
+      locator->BuildLocator();
+      this->Locators.push_back(locator);
+    };
+    if (!cloud->IsCompressed())
+    {
+      build(cloud->GetLightPositions());
     }
+    for (const auto& zone : cloud->GetZones())
+    {
+      vtkNew<vtkPoints> points;
+      points->SetDataTypeToDouble();
+      for (std::size_t q = 0; q < zone.Lights.size() / 3; ++q)
+      {
+        points->InsertNextPoint(&zone.Lights[3 * q]);
+      }
+      build(points);
+    }
+    this->LocatorCloud = cloud;
+    this->LocatorTime = cloud->GetMTime();
   }
-  this->CloudLightsUsed = static_cast<int>(active.size());
+
   vtkNew<vtkFloatArray> radiance;
   radiance->SetName("LightCloudRadiance");
   radiance->SetNumberOfComponents(3);
   radiance->SetNumberOfTuples(n);
-  float* a = radiance->GetPointer(0);
-  vtkSMPTools::For(0, n,
-    [&](vtkIdType first, vtkIdType last)
+  radiance->Fill(0.0);
+  float* values = radiance->GetPointer(0);
+  std::vector<char> visibleAny(this->Lights.size(), 0);
+  this->NextFade.assign(this->Lights.size(), {});
+  for (std::size_t set = 0; set < this->Locators.size(); ++set)
+  {
+    // The weight vector w_t of this set: per light, per colour.
+    std::map<vtkIdType, std::array<double, 3>> weights;
+    for (std::size_t k = 0; k < this->Lights.size(); ++k)
     {
-      for (vtkIdType i = first; i < last; ++i)
+      if (!inside[k])
       {
-        double sum[3] = { 0, 0, 0 };
-        for (vtkIdType j : active)
-        {
-          const float* x = cloud->GetResponse(j) + 3 * i;
-          for (int c = 0; c < 3; ++c)
-          {
-            sum[c] += weights[3 * j + c] * x[c];
-          }
-        }
+        continue;
+      }
+      std::vector<std::pair<vtkIdType, double>> w;
+      if (this->WeighLights(static_cast<int>(k), this->Locators[set], spacing, fadeStep,
+            static_cast<vtkIdType>(set) << 32, w))
+      {
+        visibleAny[k] = 1;
+      }
+      for (const auto& [j, weight] : w)
+      {
         for (int c = 0; c < 3; ++c)
         {
-          a[3 * i + c] = static_cast<float>(sum[c]);
+          weights[j][c] += weight * this->Lights[k].Intensity[c];
         }
       }
-    });
+    }
+    this->CloudLightsUsed += static_cast<int>(weights.size());
+    if (weights.empty())
+    {
+      continue;
+    }
+    if (!cloud->IsCompressed())
+    {
+      // Dense: a = sum_j w_j X_j, per receiver.
+      vtkSMPTools::For(0, n,
+        [&](vtkIdType first, vtkIdType last)
+        {
+          for (vtkIdType i = first; i < last; ++i)
+          {
+            double sum[3] = { 0, 0, 0 };
+            for (const auto& [j, w] : weights)
+            {
+              const float* x = cloud->GetResponse(j) + 3 * i;
+              for (int c = 0; c < 3; ++c)
+              {
+                sum[c] += w[c] * x[c];
+              }
+            }
+            for (int c = 0; c < 3; ++c)
+            {
+              values[3 * i + c] = static_cast<float>(sum[c]);
+            }
+          }
+        });
+      continue;
+    }
+    // Compressed: per PCA cluster x_m = Xbar w_t and b_i = B_i w_t, then
+    // per receiver a = x_m + sum_i z_i b_i.
+    const vtkPGILightCloud::Zone& zone = cloud->GetZones()[set];
+    const int clusters = static_cast<int>(zone.BasisCount.size());
+    const int dim = zone.Dimension;
+    auto project = [&](const float* v, double result[3])
+    {
+      result[0] = result[1] = result[2] = 0.0;
+      for (const auto& [j, w] : weights)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          result[c] += w[c] * v[3 * j + c];
+        }
+      }
+    };
+    std::vector<double> xm(static_cast<std::size_t>(3 * clusters));
+    std::vector<double> bi(zone.Basis.size() / std::max(1, dim) * 3);
+    for (int q = 0; q < clusters; ++q)
+    {
+      project(&zone.Means[static_cast<std::size_t>(q) * dim], &xm[3 * q]);
+      for (int v = 0; v < zone.BasisCount[q]; ++v)
+      {
+        const int vector = zone.BasisStart[q] + v;
+        project(&zone.Basis[static_cast<std::size_t>(vector) * dim], &bi[3 * vector]);
+      }
+    }
+    const vtkIdType zoneReceivers = static_cast<vtkIdType>(zone.Receivers.size());
+    vtkSMPTools::For(0, zoneReceivers,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType r = first; r < last; ++r)
+        {
+          const int q = zone.Cluster[r];
+          double a[3] = { xm[3 * q], xm[3 * q + 1], xm[3 * q + 2] };
+          const float* z = &zone.Weights[zone.WeightStart[r]];
+          for (int v = 0; v < zone.BasisCount[q]; ++v)
+          {
+            const double* b = &bi[3 * (zone.BasisStart[q] + v)];
+            for (int c = 0; c < 3; ++c)
+            {
+              a[c] += z[v] * b[c];
+            }
+          }
+          float* o = values + 3 * zone.Receivers[r];
+          for (int c = 0; c < 3; ++c)
+          {
+            o[c] = static_cast<float>(a[c]);
+          }
+        }
+      });
+  }
+  // Lights that left every kernel are forgotten.
+  this->Fade.swap(this->NextFade);
+  for (std::size_t k = 0; k < this->Lights.size(); ++k)
+  {
+    if (inside[k] && !visibleAny[k])
+    {
+      vtkWarningMacro(<< "User light " << k << ": no cloud light near it is visible from it.");
+    }
+  }
   output->ShallowCopy(receivers);
   output->GetPointData()->AddArray(radiance);
   vtkNew<vtkIntArray> usedField;
@@ -373,6 +370,125 @@ int vtkPGILightCloudRelight::RequestData(
   usedField->InsertNextValue(this->CloudLightsUsed);
   output->GetFieldData()->AddArray(usedField);
   return 1;
+}
+
+bool vtkPGILightCloudRelight::WeighLights(int k, vtkStaticPointLocator* locator, double spacing,
+  double fadeStep, vtkIdType fadeKey, std::vector<std::pair<vtkIdType, double>>& weights)
+{
+  weights.clear();
+  const UserLight& light = this->Lights[k];
+  const double* l = light.Position;
+  vtkDataSet* set = locator->GetDataSet();
+  const vtkIdType count = set->GetNumberOfPoints();
+  if (count == 0)
+  {
+    return false;
+  }
+  vtkNew<vtkIdList> nearest, within;
+  locator->FindClosestNPoints(
+    static_cast<int>(std::min<vtkIdType>(this->NeighborCount, count)), l, nearest);
+  double farthest = 0.0;
+  for (vtkIdType q = 0; q < nearest->GetNumberOfIds(); ++q)
+  {
+    double p[3];
+    set->GetPoint(nearest->GetId(q), p);
+    farthest = std::max(farthest, std::sqrt(vtkMath::Distance2BetweenPoints(l, p)));
+  }
+  const double r = this->RadiusScale * farthest;
+  if (r > 0.0)
+  {
+    locator->FindPointsWithinRadius(r, l, within);
+  }
+  else
+  {
+    within->DeepCopy(nearest);
+  }
+  const int rays = this->VisibilityRays;
+  std::vector<float> origins(3 * rays), directions(3 * rays), lengths(rays);
+  std::vector<unsigned char> blocked(rays);
+  const std::map<vtkIdType, double>& fade = this->Fade[k];
+  std::map<vtkIdType, double>& next = this->NextFade[k];
+  double kernelSum = 0.0, weightedSum = 0.0;
+  for (vtkIdType q = 0; q < within->GetNumberOfIds(); ++q)
+  {
+    const vtkIdType j = within->GetId(q);
+    double p[3];
+    set->GetPoint(j, p);
+    const double d = std::sqrt(vtkMath::Distance2BetweenPoints(l, p));
+    const double u = r > 0.0 ? std::max(0.0, 1.0 - d / r) : 1.0;
+    const double w = u * u * u * u;
+    if (!(w > 0.0))
+    {
+      continue;
+    }
+    // Visibility: the fraction of rays from l that reach around p.
+    double target = 1.0;
+    if (this->Occluder)
+    {
+      for (int ray = 0; ray < rays; ++ray)
+      {
+        double t[3] = { p[0], p[1], p[2] };
+        if (ray > 0)
+        {
+          double dir[3];
+          SpreadDirection(ray - 1, rays - 1, dir);
+          for (int a = 0; a < 3; ++a)
+          {
+            t[a] += 0.25 * spacing * dir[a];
+          }
+        }
+        double v[3] = { t[0] - l[0], t[1] - l[1], t[2] - l[2] };
+        const double len = std::sqrt(vtkMath::Dot(v, v));
+        for (int a = 0; a < 3; ++a)
+        {
+          origins[3 * ray + a] = static_cast<float>(l[a]);
+          directions[3 * ray + a] = static_cast<float>(len > 0.0 ? v[a] / len : 0.0);
+        }
+        lengths[ray] = static_cast<float>(len);
+        if (!(len > 0.0))
+        {
+          directions[3 * ray + 2] = 1.0f;
+        }
+      }
+      this->Occluder->OccludedSegments(
+        rays, origins.data(), directions.data(), lengths.data(), 0.0f, blocked.data());
+      int open = 0;
+      for (int ray = 0; ray < rays; ++ray)
+      {
+        open += blocked[ray] ? 0 : 1;
+      }
+      target = static_cast<double>(open) / rays;
+    }
+    // The fade: a light already weighted moves toward its target; one that
+    // just entered the kernel (weight ~0 there) starts at it.
+    double f = target;
+    auto previous = fade.find(fadeKey + j);
+    if (previous != fade.end())
+    {
+      const double delta = target - previous->second;
+      f = previous->second + std::max(-fadeStep, std::min(fadeStep, delta));
+    }
+    if (std::fabs(f - target) > 1e-12)
+    {
+      this->Fading = true;
+    }
+    next[fadeKey + j] = f;
+    kernelSum += w;
+    weightedSum += w * f;
+    weights.emplace_back(j, w * f);
+  }
+  // At least 5% of the unweighted sum: the last visible lights fade out too.
+  const double norm = std::max(weightedSum, 0.05 * kernelSum);
+  if (!(norm > 0.0) || !(weightedSum > 0.0))
+  {
+    weights.clear();
+    return false;
+  }
+  for (auto& entry : weights)
+  {
+    entry.second /= norm;
+  }
+  return true;
 }
 
 void vtkPGILightCloudRelight::PrintSelf(ostream& os, vtkIndent indent)

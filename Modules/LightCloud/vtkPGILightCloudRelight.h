@@ -43,7 +43,11 @@
 #include "ProxyGILightCloudModule.h"
 #include "vtkPolyDataAlgorithm.h"
 
+#include "vtkSmartPointer.h"       // for the locators
+#include "vtkStaticPointLocator.h" // for the locators
+
 #include <map>
+#include <utility>
 #include <vector>
 
 class vtkPGILightCloud;
@@ -115,8 +119,17 @@ protected:
   int LightsOutside = 0;
   int CloudLightsUsed = 0;
 
-  // Per user light: cloud light -> current visibility weight (the fade).
-  std::vector<std::map<vtkIdType, double>> Fade;
+  // The normalised weights of the lights of one set (the dense cloud's or
+  // a zone's, found by `locator`) for user light k; false when none of
+  // them is visible. Reads Fade[k], writes NextFade[k] (keys fadeKey + id).
+  bool WeighLights(int k, vtkStaticPointLocator* locator, double spacing, double fadeStep,
+    vtkIdType fadeKey, std::vector<std::pair<vtkIdType, double>>& weights);
+
+  // Per user light: (set << 32) + cloud light -> visibility weight (the fade).
+  std::vector<std::map<vtkIdType, double>> Fade, NextFade;
+  std::vector<vtkSmartPointer<vtkStaticPointLocator>> Locators;
+  const void* LocatorCloud = nullptr;
+  vtkMTimeType LocatorTime = 0;
   double FadeClock = 0.0;
   bool FadeStarted = false;
   const void* FadeCloud = nullptr;

@@ -678,10 +678,17 @@ void ReferenceTracer::GatherHits(const double x[3], const double n[3], std::uint
   const Internal& s = *this->Impl;
   Random rng(seed, stream);
   const double o[3] = { x[0] + s.Epsilon * n[0], x[1] + s.Epsilon * n[1], x[2] + s.Epsilon * n[2] };
+  // A Fibonacci lattice on the unit square, randomly shifted per receiver:
+  // stratified, so smooth indirect light converges much faster than with
+  // independent samples, and still unbiased.
+  const double shift[2] = { rng.Next(), rng.Next() };
+  const double golden = 0.61803398874989484820;
   for (int i = 0; i < count; ++i)
   {
-    double w[3];
-    CosineSample(n, rng.Next(), rng.Next(), w);
+    double w[3], u1 = (i + 0.5) / count + shift[0], u2 = i * golden + shift[1];
+    u1 -= std::floor(u1);
+    u2 -= std::floor(u2);
+    CosineSample(n, u1, u2, w);
     Hit hit;
     if (!TracerAccess::Intersect(s, o, w, hit, this->Rays))
     {
@@ -715,6 +722,55 @@ bool ReferenceTracer::HitVertices(
   weights[1] = rh.hit.u;
   weights[2] = rh.hit.v;
   return true;
+}
+
+ReferenceTracer::PointPlace ReferenceTracer::PlacePoint(const double p[3], int rays) const
+{
+  const Internal& s = *this->Impl;
+  PointPlace place;
+  place.NearestHit = std::numeric_limits<double>::infinity();
+  int hits = 0, behind = 0;
+  rays = std::max(1, rays);
+  for (int q = 0; q < rays; ++q)
+  {
+    // Fibonacci directions.
+    const double z = 1.0 - (q + 0.5) * 2.0 / rays;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = 2.39996322972865332 * q;
+    const double d[3] = { r * std::cos(phi), r * std::sin(phi), z };
+    RTCRayHit rh;
+    TracerAccess::Cast(s, p, d, rh, this->Rays);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+    {
+      continue;
+    }
+    ++hits;
+    place.NearestHit = std::min(place.NearestHit, static_cast<double>(rh.ray.tfar));
+    if (rh.hit.geomID == s.SphereGeometry)
+    {
+      const float* sphere = &s.Spheres[4 * rh.hit.primID];
+      double c[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        c[k] = sphere[k] - p[k];
+      }
+      behind += Dot(c, c) < static_cast<double>(sphere[3]) * sphere[3] ? 1 : 0;
+      continue;
+    }
+    const Mesh& mesh = s.Meshes[s.MeshOfGeometry[rh.hit.geomID]];
+    const unsigned* t = &mesh.Triangles[3 * rh.hit.primID];
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      e1[k] = mesh.Points[3 * t[1] + k] - mesh.Points[3 * t[0] + k];
+      e2[k] = mesh.Points[3 * t[2] + k] - mesh.Points[3 * t[0] + k];
+    }
+    const double n[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+      e1[0] * e2[1] - e1[1] * e2[0] };
+    behind += Dot(n, d) > 0.0 ? 1 : 0;
+  }
+  place.Inside = hits == rays && 2 * behind > rays;
+  return place;
 }
 
 bool ReferenceTracer::FirstHit(const double origin[3], const double direction[3], double& t,

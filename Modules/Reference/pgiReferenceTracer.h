@@ -133,13 +133,28 @@ public:
   };
   /**
    * The first hits of `count` cosine-sampled rays from x (unit normal n),
-   * drawn from random stream `stream` of `seed`; misses are left out, so a
+   * stratified (a Fibonacci lattice shifted by random stream `stream` of
+   * `seed`); misses are left out, so a
    * one-bounce estimate divides by `count`: E_ind(x) = pi/count sum over
    * hits of L(hit). For precomputes that light one set of hits by many
    * lights (the light cloud). Thread-safe.
    */
   void GatherHits(const double x[3], const double n[3], std::uint64_t seed, std::uint64_t stream,
     int count, std::vector<GatherHit>& hits) const;
+
+  /**
+   * Where a point lies, from `rays` rays spread over the sphere: Inside a
+   * solid when every ray hits and most hit a triangle from behind (its
+   * normal by the mesh's vertex order, (p1 - p0) x (p2 - p0), along the
+   * ray: closed meshes face out); otherwise its distance to the nearest hit.
+   * Spheres count as solids. For placing light-cloud lights.
+   */
+  struct PointPlace
+  {
+    bool Inside = false;
+    double NearestHit = 0.0; // infinity when every ray escapes
+  };
+  PointPlace PlacePoint(const double p[3], int rays) const;
 
   /// Albedo and geometric normal of the first hit along a ray, for tests.
   bool FirstHit(const double origin[3], const double direction[3], double& t, double normal[3],

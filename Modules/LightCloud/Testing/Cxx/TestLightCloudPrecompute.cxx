@@ -86,6 +86,7 @@ int TestLightCloudPrecompute(int argc, char* argv[])
   precompute->SetLightPositions(positions);
   precompute->IncludeDirectOn();
   precompute->SetSamples(16);
+  precompute->SetSurfaceMargin(0.0); // the light 0.05 over the plane stays
   precompute->Update();
   vtkPGILightCloud* cloud = precompute->GetOutput();
   PGI_CHECK(cloud->GetNumberOfLights() == 3 && cloud->GetNumberOfReceivers() == 81);
@@ -136,6 +137,7 @@ int TestLightCloudPrecompute(int argc, char* argv[])
   precompute->AddSceneObjectData(cubeTriangles->GetOutput());
   precompute->IncludeDirectOn();
   precompute->Update();
+  PGI_CHECK(cloud->GetNumberOfLights() == 2 && precompute->GetLightsDropped() == 0);
   double shut = 0.0, open = 0.0;
   for (vtkIdType k = 0; k < 3 * 81; ++k)
   {
@@ -144,6 +146,15 @@ int TestLightCloudPrecompute(int argc, char* argv[])
   }
   PGI_NEAR(shut, 0.0, 0.0);
   PGI_CHECK(open > 0.1);
+  // By default the shut light is left out, and so is one 0.05 over the plane.
+  precompute->SetSurfaceMargin(-1.0);
+  boxed->InsertNextPoint(0.5, 0.5, 0.05);
+  boxed->Modified();
+  precompute->Update();
+  PGI_CHECK(cloud->GetNumberOfLights() == 1 && precompute->GetLightsDropped() == 2);
+  double kept[3];
+  cloud->GetLightPositions()->GetPoint(0, kept);
+  PGI_NEAR(kept[2], 1.5, 0.0);
   precompute->RemoveAllSceneObjects();
 
   // 3. Indirect light against the Embree reference: a floor and a wall, a
