@@ -3,11 +3,14 @@
 // placed at random off the grid (a fixed seed no setting is tuned to), in
 // one run:
 //   ProxyGIBenchLightCloud [--out PREFIX] [--quick] [--reference-spp N] [scene.json]
-// Default scene: Testing/Data/cornell-box.json. Per setting: cloud lights
+// Default scene: Testing/Data/cornell-box.json. The cloud's grid has cubic
+// cells, "N cells across" the region's shortest axis. Per setting: cloud lights
 // (after clustering, per zone), coefficients per receiver, memory,
 // precompute seconds (dense + compression), CPU relighting milliseconds per
-// frame, and the relative RMSE of the indirect light (mean over the test
-// lights). Writes PREFIX.md, PREFIX.csv and PREFIX.png (error against
+// frame, the relative RMSE of the indirect light (mean over the test lights)
+// and of the total light when the direct light is exact (Embree's).
+// The cloud's region is the scene's "light_cloud" region, else the objects'
+// bounds. Writes PREFIX.md, PREFIX.csv and PREFIX.png (error against
 // coefficients per receiver).
 #include "pgiBenchPlot.h"
 #include "pgiScene.h"
@@ -27,6 +30,7 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStaticCellLocator.h>
 
 #include <algorithm>
 #include <array>
@@ -56,7 +60,8 @@ struct Setting
 struct Result
 {
   double Lights = 0, Coefficients = 0, MegaBytes = 0, Precompute = 0, RelightMs = 0;
-  double Error = 0, Worst = 0;
+  // Over the lights clear of surfaces; NearError over those near them.
+  double Error = 0, Worst = 0, TotalError = 0, NearError = 0;
 };
 
 struct Bench
@@ -65,7 +70,9 @@ struct Bench
   vtkNew<vtkPGIMeshOccluder> Occluder;
   double Region[6];
   std::vector<std::array<double, 3>> Lights;
-  std::vector<vtkSmartPointer<vtkFloatArray>> Truth;
+  std::vector<char> Near; // closer to a surface than half the baseline's spacing
+  int NearCount = 0;
+  std::vector<vtkSmartPointer<vtkFloatArray>> Truth, TruthDirect;
 };
 
 double Now()
@@ -108,7 +115,20 @@ Result Run(const Setting& s, Bench& b)
   vtkNew<vtkPGILightCloudPrecompute> precompute;
   precompute->SetInputData(b.Receivers);
   precompute->SetRegionOfInterest(b.Region);
-  precompute->SetGridResolution(s.Resolution, s.Resolution, s.Resolution);
+  // Cubic cells: Resolution along the region's shortest axis.
+  double shortest = VTK_DOUBLE_MAX;
+  for (int a = 0; a < 3; ++a)
+  {
+    shortest = std::min(shortest, b.Region[2 * a + 1] - b.Region[2 * a]);
+  }
+  int cells[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    cells[a] = std::max(1,
+      static_cast<int>(
+        std::lround(s.Resolution * (b.Region[2 * a + 1] - b.Region[2 * a]) / shortest)));
+  }
+  precompute->SetGridResolution(cells);
   precompute->SetSamples(s.Samples);
   precompute->SetCompress(s.Compress);
   precompute->SetMergeTolerance(s.MergeTolerance);
@@ -129,20 +149,30 @@ Result Run(const Setting& s, Bench& b)
     {
       r.RelightMs = ms;
     }
-    double e2 = 0.0, t2 = 0.0;
+    double e2 = 0.0, t2 = 0.0, total2 = 0.0;
     for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
     {
       const double d = a->GetValue(i) - b.Truth[k]->GetValue(i);
+      const double total =
+        static_cast<double>(b.Truth[k]->GetValue(i)) + b.TruthDirect[k]->GetValue(i);
       e2 += d * d;
       t2 += static_cast<double>(b.Truth[k]->GetValue(i)) * b.Truth[k]->GetValue(i);
+      total2 += total * total;
     }
     const double e = std::sqrt(e2 / t2);
     if (std::getenv("PGI_VERBOSE"))
     {
-      std::printf("  light %zu at (%.3f %.3f %.3f): %.1f%%\n", k, b.Lights[k][0], b.Lights[k][1],
-        b.Lights[k][2], 100 * e);
+      std::printf("  light %zu at (%.3f %.3f %.3f)%s: %.1f%%\n", k, b.Lights[k][0], b.Lights[k][1],
+        b.Lights[k][2], b.Near[k] ? " near a surface" : "", 100 * e);
     }
-    r.Error += e / b.Lights.size();
+    if (b.Near[k])
+    {
+      r.NearError += e / b.NearCount;
+      continue;
+    }
+    const double clear = static_cast<double>(b.Lights.size() - b.NearCount);
+    r.TotalError += std::sqrt(e2 / total2) / clear;
+    r.Error += e / clear;
     r.Worst = std::max(r.Worst, e);
   }
   return r;
@@ -192,19 +222,36 @@ int main(int argc, char* argv[])
   append->Update();
   b.Receivers = append->GetOutput();
   b.Receivers->GetBounds(b.Region);
+  if (description.HasCloudRegion)
+  {
+    std::copy(description.CloudRegion, description.CloudRegion + 6, b.Region);
+  }
   std::string message;
   b.Occluder->Prepare(message);
 
   // Test lights: uniform in the region, inset, not inside a solid (a point
-  // all of whose six axis rays are blocked), from a fixed seed.
+  // all of whose six axis rays are blocked), from a fixed seed. Lights
+  // closer to a surface than half the baseline grid's cell are counted
+  // apart: the cloud's lights are no nearer than that, so there it
+  // extrapolates a near field it never saw.
   std::uint64_t state = 0x5EED;
   auto next = [&state]()
   {
     state = state * 6364136223846793005ull + 1442695040888963407ull;
     return (state >> 11) * (1.0 / 9007199254740992.0);
   };
-  const int testLights = quick ? 3 : 6;
-  while (static_cast<int>(b.Lights.size()) < testLights)
+  vtkNew<vtkStaticCellLocator> surfaces;
+  surfaces->SetDataSet(b.Receivers);
+  surfaces->BuildLocator();
+  double halfCell = VTK_DOUBLE_MAX;
+  for (int a = 0; a < 3; ++a)
+  {
+    halfCell = std::min(halfCell, 0.5 * (b.Region[2 * a + 1] - b.Region[2 * a]) / 5.0);
+  }
+  const int clearLights = quick ? 3 : 6, nearLights = quick ? 2 : 4;
+  int clearFound = 0;
+  for (int tries = 0; tries < 100000 && (clearFound < clearLights || b.NearCount < nearLights);
+       ++tries)
   {
     std::array<double, 3> p;
     for (int a = 0; a < 3; ++a)
@@ -222,14 +269,27 @@ int main(int argc, char* argv[])
     }
     unsigned char blocked[6];
     b.Occluder->Occluded(6, origins, directions, 0.0f, blocked);
-    if (blocked[0] + blocked[1] + blocked[2] + blocked[3] + blocked[4] + blocked[5] < 6)
+    if (blocked[0] + blocked[1] + blocked[2] + blocked[3] + blocked[4] + blocked[5] == 6)
+    {
+      continue;
+    }
+    double closest[3], d2;
+    vtkIdType cell;
+    int sub;
+    surfaces->FindClosestPoint(p.data(), closest, cell, sub, d2);
+    const bool near = d2 < halfCell * halfCell;
+    if (near ? b.NearCount < nearLights : clearFound < clearLights)
     {
       b.Lights.push_back(p);
+      b.Near.push_back(near ? 1 : 0);
+      (near ? b.NearCount : clearFound)++;
     }
   }
-  double noise = 0.0;
+  const int testLights = static_cast<int>(b.Lights.size());
+  double noise = 0.0, nearNoise = 0.0;
   for (const auto& p : b.Lights)
   {
+    const bool isNear = b.Near[b.Truth.size()] != 0;
     vtkNew<vtkPGILighting> lighting;
     lighting->SetUniformRadiance(0.0, 0.0, 0.0);
     lighting->AddPointLight(p[0], p[1], p[2], 1.0, 1.0, 1.0);
@@ -241,6 +301,9 @@ int main(int argc, char* argv[])
     auto truth = vtkSmartPointer<vtkFloatArray>::New();
     truth->DeepCopy(reference->GetOutput()->GetPointData()->GetArray("IndirectOneBounce"));
     b.Truth.push_back(truth);
+    auto direct = vtkSmartPointer<vtkFloatArray>::New();
+    direct->DeepCopy(reference->GetOutput()->GetPointData()->GetArray("DirectShadowed"));
+    b.TruthDirect.push_back(direct);
     vtkDataArray* se = reference->GetOutput()->GetPointData()->GetArray("IndirectStdErr");
     double s2 = 0.0, t2 = 0.0;
     for (vtkIdType i = 0; i < truth->GetNumberOfValues(); ++i)
@@ -248,24 +311,26 @@ int main(int argc, char* argv[])
       s2 += se->GetComponent(i / 3, i % 3) * se->GetComponent(i / 3, i % 3);
       t2 += static_cast<double>(truth->GetValue(i)) * truth->GetValue(i);
     }
-    noise += std::sqrt(s2 / t2) / b.Lights.size();
+    (isNear ? nearNoise : noise) += std::sqrt(s2 / t2);
   }
-  std::printf("%s: %lld receivers; %d test lights; Embree %d samples, its own indirect noise "
-              "%.2f%%\n",
+  noise /= std::max(1, testLights - b.NearCount);
+  nearNoise /= std::max(1, b.NearCount);
+  std::printf("%s: %lld receivers; %d test lights (%d within %.3f of a surface); Embree %d "
+              "samples, its own indirect noise %.2f%% (near: %.2f%%)\n",
     description.Name.c_str(), static_cast<long long>(b.Receivers->GetNumberOfPoints()), testLights,
-    referenceSamples, 100 * noise);
+    b.NearCount, halfCell, referenceSamples, 100 * noise, 100 * nearNoise);
 
   std::vector<Setting> settings;
   Setting base;
   base.Knob = "baseline";
-  base.Value = "5^3 lights, 64 samples, dense";
+  base.Value = "5 cells across, 64 samples, dense";
   settings.push_back(base);
   for (int res : quick ? std::vector<int>{ 3, 7 } : std::vector<int>{ 3, 4, 6, 7, 8 })
   {
     Setting s = base;
     s.Knob = "cloud density";
     s.Resolution = res;
-    s.Value = std::to_string(res) + "^3 lights";
+    s.Value = std::to_string(res) + " cells across";
     settings.push_back(s);
   }
   for (int spp : quick ? std::vector<int>{ 16, 256 } : std::vector<int>{ 16, 32, 128, 256 })
@@ -321,16 +386,20 @@ int main(int argc, char* argv[])
   }
 
   std::ofstream md(out + ".md"), csv(out + ".csv");
-  csv << "knob,value,lights,coefficients,megabytes,precompute_s,relight_ms,indirect_error,worst\n";
-  char line[512];
+  csv << "knob,value,lights,coefficients,megabytes,precompute_s,relight_ms,indirect_error,worst,"
+         "total_error,near_indirect_error\n";
+  char line[1024];
   std::snprintf(line, sizeof(line),
-    "Scene: %s, %lld receivers; %d test lights at random (seed 0x5EED); Embree %d samples "
-    "(its own indirect noise %.2f%%).\n\n"
+    "Scene: %s, %lld receivers; %d test lights at random (seed 0x5EED), %d of them within "
+    "%.3f (half the baseline's cell) of a surface; Embree %d samples (its own indirect noise "
+    "%.2f%%, near surfaces %.2f%%). Errors are relative RMSE against Embree, mean over the "
+    "lights clear of surfaces unless the column says near; the total takes Embree's exact "
+    "direct light.\n\n"
     "| knob | setting | cloud lights | coefficients / receiver | memory (MB) | precompute (s) | "
-    "relight (ms / frame) | indirect error (mean) | worst "
-    "|\n|---|---|---|---|---|---|---|---|---|\n",
+    "relight (ms / frame) | indirect error | worst | total error | indirect error, near "
+    "surfaces |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
     description.Name.c_str(), static_cast<long long>(b.Receivers->GetNumberOfPoints()), testLights,
-    referenceSamples, 100 * noise);
+    b.NearCount, halfCell, referenceSamples, 100 * noise, 100 * nearNoise);
   md << line;
   std::printf("%s", line);
   std::vector<pgibench::Series> series;
@@ -338,15 +407,15 @@ int main(int argc, char* argv[])
   {
     const Result r = Run(s, b);
     std::snprintf(line, sizeof(line),
-      "| %s | %s | %.1f | %.1f | %.2f | %.2f | %.2f | %.1f%% | %.1f%% |\n", s.Knob.c_str(),
-      s.Value.c_str(), r.Lights, r.Coefficients, r.MegaBytes, r.Precompute, r.RelightMs,
-      100 * r.Error, 100 * r.Worst);
+      "| %s | %s | %.1f | %.1f | %.2f | %.2f | %.2f | %.1f%% | %.1f%% | %.1f%% | %.1f%% |\n",
+      s.Knob.c_str(), s.Value.c_str(), r.Lights, r.Coefficients, r.MegaBytes, r.Precompute,
+      r.RelightMs, 100 * r.Error, 100 * r.Worst, 100 * r.TotalError, 100 * r.NearError);
     md << line;
     std::printf("%s", line);
     std::fflush(stdout);
     csv << s.Knob << ',' << s.Value << ',' << r.Lights << ',' << r.Coefficients << ','
         << r.MegaBytes << ',' << r.Precompute << ',' << r.RelightMs << ',' << r.Error << ','
-        << r.Worst << '\n';
+        << r.Worst << ',' << r.TotalError << ',' << r.NearError << '\n';
     auto it = std::find_if(
       series.begin(), series.end(), [&](const pgibench::Series& x) { return x.Name == s.Knob; });
     if (it == series.end())

@@ -114,6 +114,10 @@ Commands:
              effects, the backend, the SH order and the sphere count; a handle
              drags a light; an overlay shows the plan, times and error.
              Run 'proxygi view --help'.
+  cloud      A scene's light cloud (Kristensen 2005; default: the Cornell
+             box): precompute on Embree, then a point light moving along a
+             path, relit per step; frames, time per frame, per-step change,
+             error against Embree. Run 'proxygi cloud --help'.
   reference  Embree path-traced ground truth of a scene (or the default
              scene), per pixel (EXR/PNG) or per vertex (.vtp), with its noise.
              Run 'proxygi reference --help'.
@@ -256,6 +260,10 @@ int main(int argc, char* argv[])
   if (command == "view")
   {
     return proxygi::cli::RunView(args);
+  }
+  if (command == "cloud")
+  {
+    return proxygi::cli::RunCloud(args);
   }
   vtkLogF(ERROR, "proxygi: unknown command '%s'", command.c_str());
   std::fputs(Usage, stderr);

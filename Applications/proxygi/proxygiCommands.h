@@ -23,6 +23,8 @@ int RunProxies(const Args& args);
 int RunShade(const Args& args);
 /// An interactive window on a scene with GI live.
 int RunView(const Args& args);
+/// A scene's light cloud and a user light moving along a path through it.
+int RunCloud(const Args& args);
 
 /// Value of the last "--name value" (or default); sets `ok` false on a bad number.
 std::string Option(const Args& args, const std::string& name, const std::string& fallback);

@@ -216,6 +216,16 @@ void vtkPGILightCloud::DeepCopy(vtkDataObject* source)
   }
 }
 
+void vtkPGILightCloud::EnsureOutput(vtkInformationVector* out)
+{
+  vtkInformation* info = out->GetInformationObject(0);
+  if (!vtkPGILightCloud::GetData(info))
+  {
+    vtkNew<vtkPGILightCloud> cloud;
+    info->Set(vtkDataObject::DATA_OBJECT(), cloud);
+  }
+}
+
 vtkPGILightCloud* vtkPGILightCloud::GetData(vtkInformation* info)
 {
   return info ? vtkPGILightCloud::SafeDownCast(info->Get(DATA_OBJECT())) : nullptr;

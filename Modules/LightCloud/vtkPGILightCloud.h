@@ -131,6 +131,9 @@ public:
 
   static vtkPGILightCloud* GetData(vtkInformation* info);
   static vtkPGILightCloud* GetData(vtkInformationVector* v, int i = 0);
+  /// For algorithms that output a cloud: REQUEST_DATA_OBJECT's answer
+  /// (a new cloud in the output information unless one is there).
+  static void EnsureOutput(vtkInformationVector* out);
 
 protected:
   vtkPGILightCloud();

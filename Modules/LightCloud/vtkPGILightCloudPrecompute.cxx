@@ -151,12 +151,7 @@ vtkTypeBool vtkPGILightCloudPrecompute::ProcessRequest(
 {
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
   {
-    vtkInformation* info = out->GetInformationObject(0);
-    if (!vtkPGILightCloud::GetData(info))
-    {
-      vtkNew<vtkPGILightCloud> cloud;
-      info->Set(vtkDataObject::DATA_OBJECT(), cloud);
-    }
+    vtkPGILightCloud::EnsureOutput(out);
     return 1;
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
@@ -292,8 +287,28 @@ int vtkPGILightCloudPrecompute::RequestData(
     return 0;
   }
 
-  // Lights inside solids light nothing; lights almost on a surface have a
-  // response too peaked to interpolate (1/d^2): both are left out.
+  // Lights inside solids light nothing: left out. Lights almost on a
+  // surface have a response too peaked to interpolate (1/d^2): moved off
+  // it to the margin, on both sides when the surface is a thin wall, so a
+  // grid plane that falls on a wall leaves no gap of two cells.
+  // Moved lights stay inside the grid's region (the given lights' bounds).
+  double keepBox[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  if (this->LightPositions)
+  {
+    for (std::size_t j = 0; j < lights.size(); ++j)
+    {
+      const int a = static_cast<int>(j % 3);
+      keepBox[2 * a] = std::min(keepBox[2 * a], lights[j]);
+      keepBox[2 * a + 1] = std::max(keepBox[2 * a + 1], lights[j]);
+    }
+  }
+  else
+  {
+    const double* r = this->RegionOfInterest;
+    const bool own = r[0] < r[1] && r[2] < r[3] && r[4] < r[5];
+    std::copy(own ? r : box, (own ? r : box) + 6, keepBox);
+  }
   double margin = this->SurfaceMargin;
   if (margin < 0.0)
   {
@@ -322,18 +337,48 @@ int vtkPGILightCloudPrecompute::RequestData(
     margin = 0.25 * spacing;
   }
   this->LightsDropped = 0;
+  this->LightsMoved = 0;
   if (margin > 0.0)
   {
+    const int rays = 26;
     std::vector<double> kept;
     for (std::size_t j = 0; j < lights.size() / 3; ++j)
     {
-      const proxygi::ReferenceTracer::PointPlace place = tracer.PlacePoint(&lights[3 * j], 26);
-      if (place.Inside || place.NearestHit < margin)
+      const double* p = &lights[3 * j];
+      const proxygi::ReferenceTracer::PointPlace place = tracer.PlacePoint(p, rays);
+      if (!place.Inside && place.NearestHit >= margin)
       {
-        ++this->LightsDropped;
+        kept.insert(kept.end(), p, p + 3);
         continue;
       }
-      kept.insert(kept.end(), &lights[3 * j], &lights[3 * j] + 3);
+      bool moved = false;
+      if (!place.Inside)
+      {
+        // Back from the nearest surface to the margin, and across it.
+        const double* d = place.NearestDirection;
+        for (double along : { place.NearestHit - margin, place.NearestHit + margin })
+        {
+          const double q[3] = { p[0] + along * d[0], p[1] + along * d[1], p[2] + along * d[2] };
+          bool inBox = true;
+          for (int a = 0; a < 3; ++a)
+          {
+            // Half a margin of slack: the nearest ray is not quite the normal.
+            inBox = inBox && q[a] >= keepBox[2 * a] - 0.5 * margin &&
+              q[a] <= keepBox[2 * a + 1] + 0.5 * margin;
+          }
+          if (!inBox)
+          {
+            continue;
+          }
+          const proxygi::ReferenceTracer::PointPlace there = tracer.PlacePoint(q, rays);
+          if (!there.Inside && there.NearestHit >= 0.5 * margin)
+          {
+            kept.insert(kept.end(), q, q + 3);
+            moved = true;
+          }
+        }
+      }
+      ++(moved ? this->LightsMoved : this->LightsDropped);
     }
     lights.swap(kept);
   }
@@ -737,6 +782,20 @@ void vtkPGILightCloudPrecompute::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ClampDistance: " << this->ClampDistance << "\n";
   os << indent << "CacheFileName: " << (this->CacheFileName ? this->CacheFileName : "(none)")
      << "\n";
+  os << indent << "SurfaceMargin: " << this->SurfaceMargin
+     << " (last update: " << this->LightsDropped << " lights left out, " << this->LightsMoved
+     << " moved)\n";
+  os << indent << "Compress: " << this->Compress << ", ZoneSize: " << this->ZoneSize
+     << ", MaximumZones: " << this->MaximumZones << "\n";
+  os << indent << "MergeDistance: " << this->MergeDistance
+     << ", MergeTolerance: " << this->MergeTolerance << ", MergedResponse: "
+     << (this->MergedResponse == RECOMPUTED_RESPONSE ? "recomputed" : "averaged") << "\n";
+  os << indent << "PCAClusters: " << this->PCAClusters
+     << ", VectorsPerReceiver: " << this->VectorsPerReceiver
+     << ", PCAIterations: " << this->PCAIterations << "\n";
   os << indent << "LightsTraced: " << this->LightsTraced
      << ", LightsFromCache: " << this->LightsFromCache << ", Seconds: " << this->Seconds << "\n";
+  os << indent << "CompressedLights: " << this->CompressedLights
+     << ", PCARelativeError: " << this->PCARelativeError
+     << ", CompressionSeconds: " << this->CompressionSeconds << "\n";
 }

@@ -81,15 +81,20 @@ public:
   vtkGetStringMacro(AlbedoArrayName);
   /**
    * Cloud lights inside a solid (PlacePoint: every ray hits, most from
-   * behind) or nearer a surface than this are left out: the first light
-   * nothing, the second have responses too peaked (1/d^2) to interpolate
-   * between. Negative (the default): a quarter of the grid's cell (or of the
-   * given lights' spacing); 0: keep every light.
+   * behind) are left out: they light nothing. Lights nearer a surface than
+   * SurfaceMargin have responses too peaked (1/d^2) to interpolate between:
+   * each is moved along its nearest ray, back to the margin and across the
+   * surface to the margin on the other side, keeping each place that is
+   * not inside a solid and at least half the margin from every surface (a
+   * thin wall gets a light on each side; a place with none is left out).
+   * Negative (the default): a quarter of the grid's cell (or of the given
+   * lights' spacing); 0: keep every light where it is.
    */
   vtkSetMacro(SurfaceMargin, double);
   vtkGetMacro(SurfaceMargin, double);
-  /// Lights the last update left out by SurfaceMargin.
+  /// Lights the last update left out, and lights it moved off surfaces.
   vtkGetMacro(LightsDropped, vtkIdType);
+  vtkGetMacro(LightsMoved, vtkIdType);
   /// 0: 1e-3 of the scene's bounding-box diagonal.
   vtkSetClampMacro(ClampDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(ClampDistance, double);
@@ -172,7 +177,7 @@ protected:
   char* AlbedoArrayName = nullptr;
   double ClampDistance = 0.0;
   double SurfaceMargin = -1.0;
-  vtkIdType LightsDropped = 0;
+  vtkIdType LightsDropped = 0, LightsMoved = 0;
   char* CacheFileName = nullptr;
   bool Compress = false;
   vtkIdType ZoneSize = 1000;

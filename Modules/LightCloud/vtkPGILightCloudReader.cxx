@@ -38,12 +38,7 @@ vtkTypeBool vtkPGILightCloudReader::ProcessRequest(
 {
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
   {
-    vtkInformation* info = out->GetInformationObject(0);
-    if (!vtkPGILightCloud::GetData(info))
-    {
-      vtkNew<vtkPGILightCloud> cloud;
-      info->Set(vtkDataObject::DATA_OBJECT(), cloud);
-    }
+    vtkPGILightCloud::EnsureOutput(out);
     return 1;
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))

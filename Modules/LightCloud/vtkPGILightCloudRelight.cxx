@@ -17,10 +17,12 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkStaticPointLocator.h"
+#include "vtkStringArray.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 vtkStandardNewMacro(vtkPGILightCloudRelight);
@@ -363,8 +365,58 @@ int vtkPGILightCloudRelight::RequestData(
       vtkWarningMacro(<< "User light " << k << ": no cloud light near it is visible from it.");
     }
   }
+  // The plan: what ran and why.
+  std::vector<std::string> plan;
+  {
+    std::ostringstream line;
+    line << "light cloud: " << lightCount << " cloud lights, "
+         << (cloud->GetContents() == vtkPGILightCloud::IndirectOnly ? "indirect light only"
+                                                                    : "direct and indirect light")
+         << ", ";
+    if (cloud->IsCompressed())
+    {
+      line << "compressed (" << cloud->GetNumberOfZones() << " zones, "
+           << cloud->GetCoefficientsPerReceiver() << " coefficients per receiver)";
+    }
+    else
+    {
+      line << "dense (" << cloud->GetCoefficientsPerReceiver() << " coefficients per receiver)";
+    }
+    plan.push_back(line.str());
+  }
+  if (this->Lights.empty())
+  {
+    plan.push_back("user lights: none: no cloud light to add (radiance 0)");
+  }
+  else
+  {
+    std::ostringstream line;
+    line << "user lights: " << this->Lights.size() << ", " << this->CloudLightsUsed
+         << " cloud lights weighed" << (this->Occluder ? ", visibility by rays" : ", no occluder")
+         << (this->Fading ? ", fading" : "");
+    plan.push_back(line.str());
+  }
+  for (std::size_t k = 0; k < this->Lights.size(); ++k)
+  {
+    if (!inside[k])
+    {
+      plan.push_back("user light " + std::to_string(k) +
+        ": outside the cloud: skipped (direct light only, from the soft-shadow route)");
+    }
+    else if (!visibleAny[k])
+    {
+      plan.push_back("user light " + std::to_string(k) + ": no cloud light near it visible");
+    }
+  }
+  vtkNew<vtkStringArray> planArray;
+  planArray->SetName("Plan");
+  for (const std::string& line : plan)
+  {
+    planArray->InsertNextValue(line);
+  }
   output->ShallowCopy(receivers);
   output->GetPointData()->AddArray(radiance);
+  output->GetFieldData()->AddArray(planArray);
   vtkNew<vtkIntArray> usedField;
   usedField->SetName("LightCloudLightsUsed");
   usedField->InsertNextValue(this->CloudLightsUsed);

@@ -34,6 +34,11 @@
  * soft-shadow route's. An unchanged light reuses the last result (the
  * pipeline does not re-execute).
  *
+ * The field-data string array "Plan" says what ran: the cloud (dense or
+ * compressed), the user lights and cloud lights weighed, and each user
+ * light that was skipped and why (outside the cloud, nothing visible).
+ * With no user lights the radiance is 0 and the plan says so.
+ *
  * Errors: an empty cloud, receivers that are not the cloud's, a NaN/Inf
  * light position or intensity.
  */

@@ -745,7 +745,11 @@ ReferenceTracer::PointPlace ReferenceTracer::PlacePoint(const double p[3], int r
       continue;
     }
     ++hits;
-    place.NearestHit = std::min(place.NearestHit, static_cast<double>(rh.ray.tfar));
+    if (rh.ray.tfar < place.NearestHit)
+    {
+      place.NearestHit = rh.ray.tfar;
+      std::copy(d, d + 3, place.NearestDirection);
+    }
     if (rh.hit.geomID == s.SphereGeometry)
     {
       const float* sphere = &s.Spheres[4 * rh.hit.primID];

@@ -152,7 +152,8 @@ public:
   struct PointPlace
   {
     bool Inside = false;
-    double NearestHit = 0.0; // infinity when every ray escapes
+    double NearestHit = 0.0;                  // infinity when every ray escapes
+    double NearestDirection[3] = { 0, 0, 0 }; // the ray that hit nearest
   };
   PointPlace PlacePoint(const double p[3], int rays) const;
 

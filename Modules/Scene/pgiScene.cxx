@@ -425,6 +425,53 @@ bool ParseSceneValue(const std::string& json, const std::string& baseFolder,
       return false;
     }
   }
+  if (root.isMember("light_cloud"))
+  {
+    const Json::Value& c = root["light_cloud"];
+    if (!c.isObject())
+    {
+      error = "light_cloud must be an object";
+      return false;
+    }
+    if (c.isMember("region"))
+    {
+      if (!ReadVector(c, "region", scene.CloudRegion, 6, error))
+      {
+        error = "light_cloud: " + error;
+        return false;
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        if (!(scene.CloudRegion[2 * a] <= scene.CloudRegion[2 * a + 1]))
+        {
+          error = "light_cloud: region must be xmin, xmax, ymin, ymax, zmin, zmax";
+          return false;
+        }
+      }
+      scene.HasCloudRegion = true;
+    }
+    if (c.isMember("path"))
+    {
+      const Json::Value& path = c["path"];
+      if (!path.isArray() || path.size() < 2 || path.size() > 4096)
+      {
+        error = "light_cloud: path must be an array of 2 to 4096 points";
+        return false;
+      }
+      for (const Json::Value& point : path)
+      {
+        Json::Value holder(Json::objectValue);
+        holder["p"] = point;
+        double p[3];
+        if (!ReadVector(holder, "p", p, 3, error))
+        {
+          error = "light_cloud: each path point must be an array of 3 finite numbers";
+          return false;
+        }
+        scene.LightPath.insert(scene.LightPath.end(), p, p + 3);
+      }
+    }
+  }
   return true;
 }
 } // namespace

@@ -23,7 +23,9 @@
  *               { "type": "point", "position": [0, 2, 3], "intensity": [5, 5, 5] } ],
  *   "camera": { "position": [0, -4, 2], "focal_point": [0, 0, 0.4], "view_up": [0, 0, 1],
  *               "view_angle": 30, "size": [512, 512] },
- *   "effects": { "shadows": true, "indirect": true, "local_lights": true }
+ *   "effects": { "shadows": true, "indirect": true, "local_lights": true },
+ *   "light_cloud": { "region": [-1, 1, -1, 1, 0, 2],
+ *                    "path": [[-0.5, 0, 1.5], [0.5, 0.3, 0.8]] }
  * }
  * ```
  * A "plane" is a horizontal square; a "quad" any parallelogram (vtkPlaneSource's
@@ -35,6 +37,9 @@
  * translation in that order. Mesh and map paths are tried relative to the
  * scene file's folder, then to the data folder ($PROXYGI_DATA_DIR, else the
  * one the build was configured with). Meshes: .off, .vtp, .obj, .stl.
+ * "light_cloud" (optional) is for the light cloud (proxygi cloud): the
+ * region its lights fill (xmin, xmax, ymin, ymax, zmin, zmax; default the
+ * objects' bounds) and a polyline a user light moves along.
  */
 #ifndef pgiScene_h
 #define pgiScene_h
@@ -97,6 +102,10 @@ struct SceneDescription
   double ViewAngle = 30.0;
   int Size[2] = { 512, 512 };
   bool Shadows = true, Indirect = true, LocalLights = true;
+  // The light cloud's region (when HasCloudRegion) and light path.
+  bool HasCloudRegion = false;
+  double CloudRegion[6] = { 0, 0, 0, 0, 0, 0 };
+  std::vector<double> LightPath; // x, y, z per vertex
 };
 
 /// The built-in default scene: the bunny over a ground plane, forest map.

@@ -146,15 +146,21 @@ int TestLightCloudPrecompute(int argc, char* argv[])
   }
   PGI_NEAR(shut, 0.0, 0.0);
   PGI_CHECK(open > 0.1);
-  // By default the shut light is left out, and so is one 0.05 over the plane.
+  // By default the shut light is left out, and one 0.05 over the plane is
+  // lifted to the margin (a quarter of the lights' spacing); not below the
+  // plane, which is outside the lights' bounds.
   precompute->SetSurfaceMargin(-1.0);
   boxed->InsertNextPoint(0.5, 0.5, 0.05);
   boxed->Modified();
   precompute->Update();
-  PGI_CHECK(cloud->GetNumberOfLights() == 1 && precompute->GetLightsDropped() == 2);
-  double kept[3];
+  PGI_CHECK(cloud->GetNumberOfLights() == 2 && precompute->GetLightsDropped() == 1 &&
+    precompute->GetLightsMoved() == 1);
+  double kept[3], lifted[3];
   cloud->GetLightPositions()->GetPoint(0, kept);
   PGI_NEAR(kept[2], 1.5, 0.0);
+  cloud->GetLightPositions()->GetPoint(1, lifted);
+  PGI_CHECK(lifted[2] > 0.05 && lifted[2] < 1.5);
+  std::printf("lifted light at z = %.4f\n", lifted[2]);
   precompute->RemoveAllSceneObjects();
 
   // 3. Indirect light against the Embree reference: a floor and a wall, a

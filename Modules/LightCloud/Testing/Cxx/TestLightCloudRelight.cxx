@@ -20,6 +20,7 @@
 #include "vtkPGIReferenceIllumination.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
@@ -27,6 +28,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkTriangleFilter.h"
 
 #include <cmath>
@@ -36,6 +38,17 @@
 
 namespace
 {
+std::vector<std::string> PlanOf(vtkPolyData* output)
+{
+  std::vector<std::string> lines;
+  auto* plan = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("Plan"));
+  for (vtkIdType i = 0; plan && i < plan->GetNumberOfValues(); ++i)
+  {
+    lines.push_back(plan->GetValue(i));
+  }
+  return lines;
+}
+
 vtkFloatArray* Radiance(vtkPGILightCloudRelight* relight)
 {
   return vtkFloatArray::SafeDownCast(
@@ -293,6 +306,14 @@ int TestLightCloudRelight(int, char*[])
   PGI_CHECK(pgitest::WarnsSaying(bad, "lies outside the light cloud"));
   PGI_CHECK(bad->GetLightsOutside() == 1);
   PGI_NEAR(MaxAbs(Radiance(bad)), 0.0, 0.0);
+  PGI_CHECK(
+    pgitest::Says(PlanOf(bad->GetOutput()), "user light 0: outside the cloud: skipped", true));
+  // No user lights: no cloud light, and the plan says so.
+  bad->RemoveAllLights();
+  bad->Update();
+  PGI_NEAR(MaxAbs(Radiance(bad)), 0.0, 0.0);
+  PGI_CHECK(pgitest::Says(PlanOf(bad->GetOutput()), "user lights: none", true));
+  bad->AddLight(3.0, 0.0, 1.0, 1, 1, 1);
   bad->SetLightPosition(0, 0.0, std::nan(""), 1.0);
   PGI_CHECK(pgitest::FailsSaying(bad, "NaN or Inf position"));
   bad->SetLightPosition(0, 0.0, 0.0, 1.0);

@@ -91,7 +91,12 @@ int TestScene(int, char*[])
       "collinear" },
     { "{\"objects\": [{\"quad\": {\"resolution\": [0, 4]}}]}", "resolution" },
     { "{\"objects\": [{\"box\": {\"size\": [1, 0, 1]}}]}", "positive" },
-    { "{\"objects\": [{\"box\": {\"resolution\": 1e9}}]}", "resolution" } };
+    { "{\"objects\": [{\"box\": {\"resolution\": 1e9}}]}", "resolution" },
+    { "{\"objects\": [{\"plane\": {}}], \"light_cloud\": {\"region\": [1, 0, 0, 1, 0, 1]}}",
+      "region" },
+    { "{\"objects\": [{\"plane\": {}}], \"light_cloud\": {\"path\": [[0, 0, 0]]}}", "path" },
+    { "{\"objects\": [{\"plane\": {}}], \"light_cloud\": {\"path\": [[0, 0, 0], [1, 0]]}}",
+      "path" } };
   for (const auto& b : bad)
   {
     std::string message;
@@ -102,6 +107,12 @@ int TestScene(int, char*[])
       std::printf("  for %s got '%s'\n", b.Json, message.c_str());
     }
   }
+  // The light cloud's region and path.
+  PGI_CHECK(ParseScene("{\"objects\": [{\"plane\": {}}], \"light_cloud\": {\"region\": "
+                       "[-1, 1, -2, 2, 0, 3], \"path\": [[0, 0, 1], [1, 0, 1], [1, 1, 2]]}}",
+    ".", scene, error));
+  PGI_CHECK(scene.HasCloudRegion && scene.CloudRegion[3] == 2.0 && scene.LightPath.size() == 9 &&
+    scene.LightPath[8] == 2.0);
   // Walls and boxes: a quad faces (point1 - origin) x (point2 - origin); a
   // box's faces face out; each face has its own points.
   PGI_CHECK(ParseScene("{\"objects\": [{\"quad\": {\"origin\": [1, -1, 0], \"point1\": [1, -1, 2], "
