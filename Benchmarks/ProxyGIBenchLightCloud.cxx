@@ -12,7 +12,18 @@
 // The cloud's region is the scene's "light_cloud" region, else the objects'
 // bounds. Writes PREFIX.md, PREFIX.csv and PREFIX.png (error against
 // coefficients per receiver).
+//
+// With --glossy the receivers are glossy (Phong, ks 0.5, exponent 12, the
+// paper's bunny) and the sweep is over the SH order instead: the error of
+// the radiance seen from three view points inside the region, against the
+// exact glossy radiance of the same light (direct by a shadow ray, one
+// bounce by --reference-spp gather rays lit by the light), over the
+// receivers facing each viewer. Writes PREFIX.md and PREFIX.csv.
 #include "pgiBenchPlot.h"
+#include "pgiLightCloudGlossy.h"
+#include "pgiMaterial.h"
+#include "pgiReferenceScene.h"
+#include "pgiReferenceTracer.h"
 #include "pgiScene.h"
 #include "vtkPGILightCloud.h"
 #include "vtkPGILightCloudPrecompute.h"
@@ -28,7 +39,9 @@
 #include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSMPTools.h>
 #include <vtkSmartPointer.h>
 #include <vtkStaticCellLocator.h>
 
@@ -55,13 +68,19 @@ struct Setting
   vtkIdType ZoneSize = 1000;
   double Vectors = 8.0;
   int Merged = vtkPGILightCloudPrecompute::AVERAGED_RESPONSE;
+  int GlossyOrder = 0;       // 0: diffuse receivers
+  bool AtTestLights = false; // cloud lights on the test lights themselves
+  bool GlossyDirect = false; // the cloud carries the direct light too
 };
+
+const double GlossySpecular = 0.5, GlossyExponent = 12.0;
 
 struct Result
 {
   double Lights = 0, Coefficients = 0, MegaBytes = 0, Precompute = 0, RelightMs = 0;
   // Over the lights clear of surfaces; NearError over those near them.
   double Error = 0, Worst = 0, TotalError = 0, NearError = 0;
+  std::vector<double> ViewError; // glossy: per view point
 };
 
 struct Bench
@@ -73,6 +92,10 @@ struct Bench
   std::vector<char> Near; // closer to a surface than half the baseline's spacing
   int NearCount = 0;
   std::vector<vtkSmartPointer<vtkFloatArray>> Truth, TruthDirect;
+  // Glossy: view points, receiver normals, exact radiance per light and view.
+  std::vector<std::array<double, 3>> Views;
+  std::vector<double> Normals;
+  std::vector<std::vector<std::vector<float>>> GlossyTruth, GlossyIndirectTruth;
 };
 
 double Now()
@@ -109,6 +132,164 @@ vtkSmartPointer<vtkFloatArray> Relit(vtkPGILightCloud* cloud, Bench& b, const do
   return result;
 }
 
+// The exact glossy radiance (direct and one bounce) of each clear test
+// light seen from each view point; GlossyTruth[light][view], RGB.
+void GlossyReference(Bench& b, int samples)
+{
+  proxygi::ReferenceTracer tracer;
+  std::string error;
+  const double grey[3] = { 0.8, 0.8, 0.8 };
+  if (!proxygi::AddPolyData(tracer, b.Receivers, grey, "Albedo", error) || !tracer.Commit(error) ||
+    !proxygi::ReceiverNormals(b.Receivers, b.Normals, error))
+  {
+    std::fprintf(stderr, "glossy reference: %s\n", error.c_str());
+    std::exit(1);
+  }
+  const vtkIdType n = b.Receivers->GetNumberOfPoints();
+  const double offset = tracer.GetRayOffset();
+  const std::size_t lights = b.Lights.size(), views = b.Views.size();
+  b.GlossyTruth.assign(lights, std::vector<std::vector<float>>(views, std::vector<float>(3 * n)));
+  b.GlossyIndirectTruth = b.GlossyTruth;
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType first, vtkIdType last)
+    {
+      std::vector<proxygi::ReferenceTracer::GatherHit> hits;
+      for (vtkIdType i = first; i < last; ++i)
+      {
+        double x[3], a[3];
+        b.Receivers->GetPoint(i, x);
+        proxygi::AlbedoOf(b.Receivers, "Albedo", i, grey, a);
+        const double* nrm = &b.Normals[3 * i];
+        tracer.GatherHits(x, nrm, 977, static_cast<std::uint64_t>(i), samples, hits);
+        const double o[3] = { x[0] + offset * nrm[0], x[1] + offset * nrm[1],
+          x[2] + offset * nrm[2] };
+        for (std::size_t k = 0; k < lights; ++k)
+        {
+          const double* p = b.Lights[k].data();
+          // Incident irradiance: direction, RGB amount.
+          std::vector<std::array<double, 6>> in;
+          std::size_t firstBounce = 0;
+          double w[3] = { p[0] - x[0], p[1] - x[1], p[2] - x[2] };
+          const double d2 = vtkMath::Dot(w, w);
+          vtkMath::Normalize(w);
+          const double c = vtkMath::Dot(nrm, w);
+          if (c > 0.0 && !tracer.SegmentBlocked(o, p))
+          {
+            in.push_back({ w[0], w[1], w[2], c / d2, c / d2, c / d2 });
+            firstBounce = 1;
+          }
+          for (const auto& hit : hits)
+          {
+            const double y[3] = { hit.Position[0], hit.Position[1], hit.Position[2] };
+            double v[3] = { p[0] - y[0], p[1] - y[1], p[2] - y[2] };
+            const double e2 = vtkMath::Dot(v, v);
+            const double ch =
+              (hit.Normal[0] * v[0] + hit.Normal[1] * v[1] + hit.Normal[2] * v[2]) / std::sqrt(e2);
+            if (ch > 0.0 && !tracer.SegmentBlocked(y, p))
+            {
+              double u[3] = { y[0] - x[0], y[1] - x[1], y[2] - x[2] };
+              vtkMath::Normalize(u);
+              const double g = ch / e2 / samples;
+              in.push_back(
+                { u[0], u[1], u[2], hit.Albedo[0] * g, hit.Albedo[1] * g, hit.Albedo[2] * g });
+            }
+          }
+          for (std::size_t v = 0; v < views; ++v)
+          {
+            double wo[3];
+            vtkMath::Subtract(b.Views[v].data(), x, wo);
+            vtkMath::Normalize(wo);
+            double l[3] = { 0, 0, 0 }, indirect[3] = { 0, 0, 0 };
+            for (std::size_t q = 0; q < in.size(); ++q)
+            {
+              const double f =
+                GlossySpecular * proxygi::PhongLobe(nrm, in[q].data(), wo, GlossyExponent);
+              for (int ch = 0; ch < 3; ++ch)
+              {
+                const double value = (a[ch] / vtkMath::Pi() + f) * in[q][3 + ch];
+                l[ch] += value;
+                indirect[ch] += q >= firstBounce ? value : 0.0;
+              }
+            }
+            for (int ch = 0; ch < 3; ++ch)
+            {
+              b.GlossyTruth[k][v][3 * i + ch] = static_cast<float>(l[ch]);
+              b.GlossyIndirectTruth[k][v][3 * i + ch] = static_cast<float>(indirect[ch]);
+            }
+          }
+        }
+      }
+    });
+}
+
+// Errors of a glossy cloud: Error/Worst over the views (clear lights),
+// ViewError per view.
+void RunGlossy(vtkPGILightCloud* cloud, Bench& b, bool direct, Result& r)
+{
+  r.ViewError.assign(b.Views.size(), 0.0);
+  int clear = 0;
+  for (std::size_t k = 0; k < b.Lights.size(); ++k)
+  {
+    if (b.Near[k])
+    {
+      continue;
+    }
+    ++clear;
+    for (std::size_t v = 0; v < b.Views.size(); ++v)
+    {
+      vtkNew<vtkPGILightCloudRelight> relight;
+      relight->SetInputData(b.Receivers);
+      relight->SetCloudData(cloud);
+      relight->SetOccluder(b.Occluder);
+      relight->AddLight(b.Lights[k][0], b.Lights[k][1], b.Lights[k][2], 1, 1, 1);
+      relight->SetViewPoint(b.Views[v].data());
+      relight->Update();
+      if (k == 0 && v == 0)
+      {
+        // Frames of the light moving in small steps, then back.
+        const int frames = 10;
+        const double t0 = Now();
+        for (int f = 1; f <= frames; ++f)
+        {
+          relight->SetLightPosition(0, b.Lights[k][0] + 0.002 * f, b.Lights[k][1], b.Lights[k][2]);
+          relight->Update();
+        }
+        r.RelightMs = 1000.0 * (Now() - t0) / frames;
+        relight->SetLightPosition(0, b.Lights[k][0], b.Lights[k][1], b.Lights[k][2]);
+        relight->ResetFade();
+        relight->Update();
+      }
+      vtkDataArray* seen = relight->GetOutput()->GetPointData()->GetArray("LightCloudRadiance");
+      double e2 = 0.0, t2 = 0.0;
+      for (vtkIdType i = 0; i < b.Receivers->GetNumberOfPoints(); ++i)
+      {
+        double x[3], wo[3];
+        b.Receivers->GetPoint(i, x);
+        vtkMath::Subtract(b.Views[v].data(), x, wo);
+        if (vtkMath::Dot(wo, &b.Normals[3 * i]) <= 0.0)
+        {
+          continue; // facing away from this viewer
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          const double t = (direct ? b.GlossyTruth : b.GlossyIndirectTruth)[k][v][3 * i + c];
+          const double d = seen->GetComponent(i, c) - t;
+          e2 += d * d;
+          t2 += t * t;
+        }
+      }
+      const double e = std::sqrt(e2 / std::max(t2, 1e-300));
+      r.ViewError[v] += e;
+      r.Worst = std::max(r.Worst, e);
+    }
+  }
+  for (double& e : r.ViewError)
+  {
+    e /= std::max(1, clear);
+    r.Error += e / static_cast<double>(r.ViewError.size());
+  }
+}
+
 Result Run(const Setting& s, Bench& b)
 {
   Result r;
@@ -129,18 +310,42 @@ Result Run(const Setting& s, Bench& b)
         std::lround(s.Resolution * (b.Region[2 * a + 1] - b.Region[2 * a]) / shortest)));
   }
   precompute->SetGridResolution(cells);
+  if (s.AtTestLights)
+  {
+    // SH truncation and noise alone: relighting lands on a cloud light.
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    for (const auto& p : b.Lights)
+    {
+      points->InsertNextPoint(p.data());
+    }
+    precompute->SetLightPositions(points);
+    precompute->SetSurfaceMargin(0.0);
+  }
   precompute->SetSamples(s.Samples);
   precompute->SetCompress(s.Compress);
   precompute->SetMergeTolerance(s.MergeTolerance);
   precompute->SetZoneSize(s.ZoneSize);
   precompute->SetVectorsPerReceiver(s.Vectors);
   precompute->SetMergedResponse(s.Merged);
+  if (s.GlossyOrder > 0)
+  {
+    precompute->SetSpecularAlbedo(GlossySpecular);
+    precompute->SetPhongExponent(GlossyExponent);
+    precompute->SetGlossyOrder(s.GlossyOrder);
+    precompute->SetIncludeDirect(s.GlossyDirect);
+  }
   precompute->Update();
   vtkPGILightCloud* cloud = precompute->GetOutput();
   r.Precompute = precompute->GetSeconds();
   r.Lights = s.Compress ? precompute->GetCompressedLights() : cloud->GetNumberOfLights();
   r.Coefficients = cloud->GetCoefficientsPerReceiver();
   r.MegaBytes = cloud->GetActualMemorySize() / 1024.0;
+  if (s.GlossyOrder > 0)
+  {
+    RunGlossy(cloud, b, s.GlossyDirect, r);
+    return r;
+  }
   for (std::size_t k = 0; k < b.Lights.size(); ++k)
   {
     double ms = 0.0;
@@ -177,12 +382,140 @@ Result Run(const Setting& s, Bench& b)
   }
   return r;
 }
+int GlossySweep(Bench& b, const std::string& name, const std::string& out, bool quick, int spp)
+{
+  // View points inside the region: a low front corner, high above, a side.
+  const double* g = b.Region;
+  auto at = [g](double u, double v, double w)
+  {
+    return std::array<double, 3>{ g[0] + u * (g[1] - g[0]), g[2] + v * (g[3] - g[2]),
+      g[4] + w * (g[5] - g[4]) };
+  };
+  b.Views = { at(0.15, 0.1, 0.3), at(0.5, 0.5, 0.9), at(0.9, 0.6, 0.5) };
+  const double t0 = Now();
+  GlossyReference(b, spp);
+  std::printf("%s, glossy receivers (Phong ks %.2f, exponent %.0f): %lld receivers, %zu test "
+              "lights (%d near surfaces, left out), %zu view points; reference %d gather rays "
+              "(%.1f s)\n",
+    name.c_str(), GlossySpecular, GlossyExponent,
+    static_cast<long long>(b.Receivers->GetNumberOfPoints()), b.Lights.size(), b.NearCount,
+    b.Views.size(), spp, Now() - t0);
+  std::vector<Setting> settings;
+  auto orderName = [](int order)
+  {
+    return "order " + std::to_string(order) + " (" + std::to_string(order * order) + " per colour)";
+  };
+  for (int order : quick ? std::vector<int>{ 2, 4, 6 } : std::vector<int>{ 2, 3, 4, 5, 6 })
+  {
+    Setting s;
+    s.Knob = "SH order, cloud lights on the test lights";
+    s.AtTestLights = true;
+    s.GlossyOrder = order;
+    s.Value = orderName(order);
+    settings.push_back(s);
+  }
+  for (int order : { 2, 4 })
+  {
+    Setting s;
+    s.Knob = "SH order";
+    s.Resolution = quick ? 3 : 4;
+    s.GlossyOrder = order;
+    s.Value = orderName(order) + ", " + std::to_string(s.Resolution) + " cells across";
+    settings.push_back(s);
+  }
+  for (int res : quick ? std::vector<int>{ 5 } : std::vector<int>{ 3, 5, 6 })
+  {
+    Setting s;
+    s.Knob = "cloud density";
+    s.Resolution = res;
+    s.GlossyOrder = 4;
+    s.Value = orderName(4) + ", " + std::to_string(res) + " cells across";
+    settings.push_back(s);
+  }
+  for (int res : quick ? std::vector<int>{ 3 } : std::vector<int>{ 3, 5 })
+  {
+    Setting s;
+    s.Knob = "direct light in the cloud too";
+    s.Resolution = res;
+    s.GlossyOrder = 4;
+    s.GlossyDirect = true;
+    s.Value = orderName(4) + ", " + std::to_string(res) + " cells across";
+    settings.push_back(s);
+  }
+  {
+    Setting s;
+    s.Knob = "direct light in the cloud too";
+    s.AtTestLights = true;
+    s.GlossyOrder = 4;
+    s.GlossyDirect = true;
+    s.Value = orderName(4) + ", cloud lights on the test lights";
+    settings.push_back(s);
+  }
+  Setting compressed;
+  compressed.GlossyOrder = 4;
+  compressed.Resolution = quick ? 3 : 4;
+  compressed.Compress = true;
+  compressed.Vectors = 16;
+  compressed.Knob = "compressed";
+  compressed.Value = "order 4, " + std::to_string(compressed.Resolution) +
+    " cells across, tolerance 0.10, 16 vectors";
+  settings.push_back(compressed);
+
+  std::ofstream md(out + ".md"), csv(out + ".csv");
+  csv << "knob,value,lights,coefficients,megabytes,precompute_s,relight_ms,error,worst";
+  char line[1024];
+  std::snprintf(line, sizeof(line),
+    "Scene: %s, %lld receivers, all glossy (Phong ks %.2f, exponent %.0f, Lambert albedo as "
+    "the scene's). Error: relative RMSE of the indirect radiance (direct and indirect where the "
+    "knob says so) seen from each view point over the receivers facing it, against the exact "
+    "glossy radiance (%d gather rays), mean over %d test lights clear of surfaces.\n\n"
+    "| knob | setting | cloud lights | coefficients / receiver | memory (MB) | precompute (s) | "
+    "relight (ms / frame) | view 1 | view 2 | view 3 | mean | worst |\n"
+    "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    name.c_str(), static_cast<long long>(b.Receivers->GetNumberOfPoints()), GlossySpecular,
+    GlossyExponent, spp, static_cast<int>(b.Lights.size()) - b.NearCount);
+  for (std::size_t v = 0; v < b.Views.size(); ++v)
+  {
+    csv << ",view" << v + 1;
+  }
+  csv << "\n";
+  md << line;
+  std::printf("%s", line);
+  for (const Setting& s : settings)
+  {
+    const Result r = Run(s, b);
+    std::snprintf(line, sizeof(line),
+      "| %s | %s | %.1f | %.1f | %.2f | %.2f | %.2f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% "
+      "|\n",
+      s.Knob.c_str(), s.Value.c_str(), r.Lights, r.Coefficients, r.MegaBytes, r.Precompute,
+      r.RelightMs, 100 * r.ViewError[0], 100 * r.ViewError[1], 100 * r.ViewError[2], 100 * r.Error,
+      100 * r.Worst);
+    md << line;
+    std::printf("%s", line);
+    std::fflush(stdout);
+    csv << s.Knob << ',' << s.Value << ',' << r.Lights << ',' << r.Coefficients << ','
+        << r.MegaBytes << ',' << r.Precompute << ',' << r.RelightMs << ',' << r.Error << ','
+        << r.Worst;
+    for (double e : r.ViewError)
+    {
+      csv << ',' << e;
+    }
+    csv << '\n';
+  }
+  std::printf("wrote %s.md, %s.csv\n", out.c_str(), out.c_str());
+  return 0;
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
+  // Debian's VTK defaults to the sequential SMP backend: both cores.
+  if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
+  {
+    vtkSMPTools::SetBackend("STDThread");
+  }
   std::string out = "lightcloud-sweep", scenePath = PROXYGI_BENCH_SCENE;
-  bool quick = false;
+  bool quick = false, glossy = false;
   int referenceSamples = 512;
   for (int i = 1; i < argc; ++i)
   {
@@ -193,6 +526,10 @@ int main(int argc, char* argv[])
     else if (!std::strcmp(argv[i], "--quick"))
     {
       quick = true;
+    }
+    else if (!std::strcmp(argv[i], "--glossy"))
+    {
+      glossy = true;
     }
     else if (!std::strcmp(argv[i], "--reference-spp") && i + 1 < argc)
     {
@@ -284,6 +621,10 @@ int main(int argc, char* argv[])
       b.Near.push_back(near ? 1 : 0);
       (near ? b.NearCount : clearFound)++;
     }
+  }
+  if (glossy)
+  {
+    return GlossySweep(b, description.Name, out, quick, referenceSamples);
   }
   const int testLights = static_cast<int>(b.Lights.size());
   double noise = 0.0, nearNoise = 0.0;

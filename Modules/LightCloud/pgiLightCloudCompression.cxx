@@ -99,7 +99,7 @@ std::vector<std::vector<vtkIdType>> SplitIntoZones(
 
 MergedLights ClusterLights(const std::vector<const float*>& responses,
   const std::vector<double>& positions, vtkIdType receivers, double w1, double w2,
-  const std::vector<char>& visible)
+  const std::vector<char>& visible, int values)
 {
   const vtkIdType count = static_cast<vtkIdType>(responses.size());
   const std::size_t n = static_cast<std::size_t>(count);
@@ -124,7 +124,7 @@ MergedLights ClusterLights(const std::vector<const float*>& responses,
         const float* b = responses[k];
         for (vtkIdType c = 0; c < receivers && w1 * d + w2 * std::sqrt(largest) < 1.0; ++c)
         {
-          largest = std::max(largest, Distance2(a + 3 * c, b + 3 * c, 3));
+          largest = std::max(largest, Distance2(a + values * c, b + values * c, values));
         }
         value += w2 * std::sqrt(largest);
       }

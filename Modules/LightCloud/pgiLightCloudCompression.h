@@ -38,15 +38,15 @@ struct MergedLights
 /**
  * Bottom-up clustering of `count` lights (positions xyz each) by the
  * paper's metric Delta_jk = w1 |p_j - p_k| + w2 max_c |X_j(c) - X_k(c)| +
- * V_jk, with X_j(c) light j's RGB response at receiver c (responses[j]
- * holds 3 x receivers floats) and V_jk = 0 where visible[j * count + k],
- * else 1. Two clusters merge while every pair across them has Delta < 1
- * (Delta of two clusters is the largest over their pairs), the closest
- * pair first (a priority queue). Deterministic.
+ * V_jk, with X_j(c) light j's response at receiver c (responses[j]
+ * holds `values` x receivers floats: RGB, or RGB per SH coefficient) and V_jk = 0 where visible[j *
+ * count + k], else 1. Two clusters merge while every pair across them has Delta < 1 (Delta of two
+ * clusters is the largest over their pairs), the closest pair first (a priority queue).
+ * Deterministic.
  */
 PROXYGILIGHTCLOUD_EXPORT MergedLights ClusterLights(const std::vector<const float*>& responses,
   const std::vector<double>& positions, vtkIdType receivers, double w1, double w2,
-  const std::vector<char>& visible);
+  const std::vector<char>& visible, int values = 3);
 
 /// A clustered-PCA code of `rows` vectors of `dimension` floats.
 struct ClusteredPCACode

@@ -3,6 +3,7 @@
 #include "vtkPGILightCloud.h"
 #include "vtkPoints.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -34,7 +35,7 @@ struct Header
   std::uint32_t Version;
   std::uint32_t Contents;
   std::int32_t Samples;
-  std::uint32_t Reserved;
+  std::uint32_t Coefficients; // 0 in files from before glossy clouds: 1
   std::uint64_t Key;
   std::uint64_t ReceiverKey;
   std::uint64_t Receivers;
@@ -45,7 +46,8 @@ struct Header
 bool WriteRecord(std::ofstream& out, vtkPGILightCloud* cloud, vtkIdType light)
 {
   const std::uint64_t index = static_cast<std::uint64_t>(light);
-  const std::size_t bytes = static_cast<std::size_t>(3 * cloud->GetNumberOfReceivers()) * 4;
+  const std::size_t bytes =
+    static_cast<std::size_t>(cloud->GetValuesPerReceiver() * cloud->GetNumberOfReceivers()) * 4;
   Hash h;
   h.Add(&index, sizeof(index));
   h.Add(cloud->GetResponse(light), bytes);
@@ -76,7 +78,7 @@ bool WriteLightCloudHeader(
   header.Version = Version;
   header.Contents = static_cast<std::uint32_t>(cloud->GetContents());
   header.Samples = cloud->GetSamples();
-  header.Reserved = 0;
+  header.Coefficients = static_cast<std::uint32_t>(cloud->GetCoefficients());
   header.Key = key;
   header.ReceiverKey = cloud->GetReceiverKey();
   header.Receivers = static_cast<std::uint64_t>(cloud->GetNumberOfReceivers());
@@ -182,8 +184,10 @@ bool ReadLightCloud(
     error = where + "corrupted header (checksum mismatch)";
     return false;
   }
-  if (header.Contents > 1 || header.Receivers > (1ull << 32) ||
-    header.Lights * header.Receivers > (1ull << 32))
+  const std::uint64_t coefficients = std::max<std::uint32_t>(1, header.Coefficients);
+  const std::uint64_t order = static_cast<std::uint64_t>(std::lround(std::sqrt(coefficients)));
+  if (header.Contents > 1 || header.Receivers > (1ull << 32) || order * order != coefficients ||
+    order > 8 || header.Lights * header.Receivers * coefficients > (1ull << 32))
   {
     error = where + "header sizes out of range";
     return false;
@@ -197,7 +201,7 @@ bool ReadLightCloud(
     }
   }
   const vtkIdType lights = static_cast<vtkIdType>(header.Lights);
-  cloud->Allocate(lights, static_cast<vtkIdType>(header.Receivers));
+  cloud->Allocate(lights, static_cast<vtkIdType>(header.Receivers), static_cast<int>(coefficients));
   for (vtkIdType j = 0; j < lights; ++j)
   {
     cloud->GetLightPositions()->SetPoint(j, &positions[3 * j]);
@@ -208,10 +212,10 @@ bool ReadLightCloud(
   info.Key = header.Key;
   info.Present.assign(static_cast<std::size_t>(lights), 0);
 
-  const std::uint64_t dataBytes = 12 * header.Receivers;
+  const std::uint64_t dataBytes = 12 * coefficients * header.Receivers;
   const std::uint64_t recordBytes = 16 + dataBytes;
   std::uint64_t offset = sizeof(Header) + positions.size() * sizeof(double) + 8;
-  std::vector<float> data(static_cast<std::size_t>(3 * header.Receivers));
+  std::vector<float> data(static_cast<std::size_t>(3 * coefficients * header.Receivers));
   while (offset < fileSize)
   {
     if (fileSize - offset < recordBytes)

@@ -26,8 +26,9 @@ vtkPGILightCloud::vtkPGILightCloud()
 
 vtkPGILightCloud::~vtkPGILightCloud() = default;
 
-void vtkPGILightCloud::Allocate(vtkIdType lights, vtkIdType receivers)
+void vtkPGILightCloud::Allocate(vtkIdType lights, vtkIdType receivers, int coefficients)
 {
+  this->Coefficients = std::max(1, coefficients);
   lights = std::max<vtkIdType>(0, lights);
   receivers = std::max<vtkIdType>(0, receivers);
   this->Positions = vtkSmartPointer<vtkPoints>::New();
@@ -38,8 +39,8 @@ void vtkPGILightCloud::Allocate(vtkIdType lights, vtkIdType receivers)
     this->Positions->SetPoint(j, 0.0, 0.0, 0.0);
   }
   this->Receivers = receivers;
-  this->Response =
-    std::make_shared<std::vector<float>>(static_cast<std::size_t>(3 * lights * receivers), 0.0f);
+  this->Response = std::make_shared<std::vector<float>>(
+    static_cast<std::size_t>(this->GetValuesPerReceiver() * lights * receivers), 0.0f);
   this->Zones = std::make_shared<std::vector<Zone>>();
   this->Spacing = -1.0;
   this->Modified();
@@ -56,7 +57,7 @@ double vtkPGILightCloud::GetCoefficientsPerReceiver() const
 {
   if (!this->IsCompressed())
   {
-    return 3.0 * this->GetNumberOfLights();
+    return static_cast<double>(this->GetValuesPerReceiver()) * this->GetNumberOfLights();
   }
   double weights = 0.0;
   for (const Zone& zone : *this->Zones)
@@ -73,12 +74,16 @@ vtkIdType vtkPGILightCloud::GetNumberOfLights() const
 
 float* vtkPGILightCloud::GetResponse(vtkIdType light)
 {
-  return this->Response->empty() ? nullptr : this->Response->data() + 3 * light * this->Receivers;
+  return this->Response->empty()
+    ? nullptr
+    : this->Response->data() + this->GetValuesPerReceiver() * light * this->Receivers;
 }
 
 const float* vtkPGILightCloud::GetResponse(vtkIdType light) const
 {
-  return this->Response->empty() ? nullptr : this->Response->data() + 3 * light * this->Receivers;
+  return this->Response->empty()
+    ? nullptr
+    : this->Response->data() + this->GetValuesPerReceiver() * light * this->Receivers;
 }
 
 std::uint64_t vtkPGILightCloud::ReceiverKeyOf(vtkPolyData* receivers)
@@ -192,6 +197,7 @@ void vtkPGILightCloud::ShallowCopy(vtkDataObject* source)
     this->Response = cloud->Response;
     this->Zones = cloud->Zones;
     this->Receivers = cloud->Receivers;
+    this->Coefficients = cloud->Coefficients;
     this->Contents = cloud->Contents;
     this->Samples = cloud->Samples;
     this->ReceiverKey = cloud->ReceiverKey;
@@ -209,6 +215,7 @@ void vtkPGILightCloud::DeepCopy(vtkDataObject* source)
     this->Response = std::make_shared<std::vector<float>>(*cloud->Response);
     this->Zones = std::make_shared<std::vector<Zone>>(*cloud->Zones);
     this->Receivers = cloud->Receivers;
+    this->Coefficients = cloud->Coefficients;
     this->Contents = cloud->Contents;
     this->Samples = cloud->Samples;
     this->ReceiverKey = cloud->ReceiverKey;
@@ -241,6 +248,8 @@ void vtkPGILightCloud::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Lights: " << this->GetNumberOfLights() << "\n";
   os << indent << "Receivers: " << this->Receivers << "\n";
+  os << indent << "Coefficients: " << this->Coefficients
+     << (this->Coefficients > 1 ? " (glossy receivers, SH)" : " (diffuse receivers)") << "\n";
   os << indent << "Contents: "
      << (this->Contents == DirectAndIndirect ? "direct and indirect" : "indirect only") << "\n";
   os << indent << "Samples: " << this->Samples << "\n";

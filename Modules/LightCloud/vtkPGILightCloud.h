@@ -8,7 +8,10 @@
  * lights the receivers from user lights placed anywhere in the cloud. The
  * response is stored per light, receiver-major inside: RGB floats, exit
  * radiance (albedo/pi times irradiance) per unit intensity (W/sr), one
- * coefficient per colour for diffuse receivers. Contents says whether it
+ * coefficient per colour for diffuse receivers; for glossy ones the exit
+ * radiance as a function of the view direction, projected on SH of order
+ * n (n^2 coefficients per colour, world frame, least squares over the
+ * hemisphere above the receiver). Contents says whether it
  * holds the indirect light only (the paper's choice, since the direct light
  * compresses badly and the soft-shadow route draws it) or direct light too.
  *
@@ -44,14 +47,20 @@ public:
     DirectAndIndirect = 1
   };
 
-  /// Sizes it for `lights` cloud lights over `receivers` receivers; the
-  /// positions are (0, 0, 0) and the responses 0 until set.
-  void Allocate(vtkIdType lights, vtkIdType receivers);
+  /// Sizes it for `lights` cloud lights over `receivers` receivers, with
+  /// `coefficients` SH coefficients per colour (1: diffuse; n^2: glossy,
+  /// order n); the positions are (0, 0, 0) and the responses 0 until set.
+  void Allocate(vtkIdType lights, vtkIdType receivers, int coefficients = 1);
   vtkIdType GetNumberOfLights() const;
   vtkIdType GetNumberOfReceivers() const { return this->Receivers; }
   /// The cloud lights' positions (one point per light).
   vtkPoints* GetLightPositions() const { return this->Positions; }
-  /// Light j's response: 3 x receivers floats (RGB per receiver); null
+  /// SH coefficients per colour: 1 (diffuse receivers) or order^2 (glossy).
+  int GetCoefficients() const { return this->Coefficients; }
+  /// Floats per receiver and light: 3 x GetCoefficients(), coefficient-major
+  /// (coefficient 0's RGB, then coefficient 1's, ...).
+  int GetValuesPerReceiver() const { return 3 * this->Coefficients; }
+  /// Light j's response: GetValuesPerReceiver() x receivers floats; null
   /// once compressed.
   float* GetResponse(vtkIdType light);
   const float* GetResponse(vtkIdType light) const;
@@ -81,7 +90,7 @@ public:
    * The compressed form (section 5 of the paper): the receivers split into
    * zones; per zone its own cluster lights (merged from the dense cloud)
    * and, per receiver, a clustered-PCA code of its response to them: the
-   * response vector x (3 x zone lights, RGB per light) is approximated as
+   * response vector x (GetValuesPerReceiver() x zone lights, light-major) is approximated as
    * Means[c] + sum_i Weights[i] Basis[c][i] for the receiver's PCA
    * cluster c.
    */
@@ -90,7 +99,7 @@ public:
     std::vector<vtkIdType> Receivers; // ids into the receivers
     std::vector<double> Lights;       // cluster lights, xyz each
     std::vector<int> LightMembers;    // dense lights merged into each
-    int Dimension = 0;                // 3 x cluster lights
+    int Dimension = 0;                // values per receiver x cluster lights
     std::vector<int> Cluster;         // PCA cluster of each zone receiver
     std::vector<float> Means;         // clusters x Dimension
     std::vector<int> BasisStart;      // per PCA cluster, in vectors
@@ -118,7 +127,7 @@ public:
   }
 
   /**
-   * Stored coefficients per receiver: 3 x lights dense; compressed, the
+   * Stored coefficients per receiver: GetValuesPerReceiver() x lights dense; compressed, the
    * mean over receivers of their PCA weights plus one (the cluster index).
    */
   double GetCoefficientsPerReceiver() const;
@@ -144,6 +153,7 @@ protected:
   std::shared_ptr<std::vector<float>> Response;
   std::shared_ptr<std::vector<Zone>> Zones;
   vtkIdType Receivers = 0;
+  int Coefficients = 1;
   int Contents = IndirectOnly;
   int Samples = 0;
   std::uint64_t ReceiverKey = 0;

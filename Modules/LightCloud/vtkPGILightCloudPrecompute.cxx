@@ -2,6 +2,7 @@
 
 #include "pgiLightCloudCompression.h"
 #include "pgiLightCloudFile.h"
+#include "pgiLightCloudGlossy.h"
 #include "pgiMaterial.h"
 #include "pgiReferenceScene.h"
 #include "pgiReferenceTracer.h"
@@ -19,7 +20,6 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkSMPTools.h"
 #include "vtkTimerLog.h"
 
@@ -391,35 +391,16 @@ int vtkPGILightCloudPrecompute::RequestData(
     return 0;
   }
 
-  // Normals: the input's, or computed (no splitting: receivers stay 1:1).
-  vtkSmartPointer<vtkDataArray> normals = receivers->GetPointData()->GetNormals();
-  if (!normals)
+  std::vector<double> normal;
+  if (!proxygi::ReceiverNormals(receivers, normal, error))
   {
-    vtkNew<vtkPolyDataNormals> filter;
-    filter->SetInputData(receivers);
-    filter->SplittingOff();
-    filter->ComputePointNormalsOn();
-    filter->Update();
-    if (filter->GetOutput()->GetNumberOfPoints() != receivers->GetNumberOfPoints() ||
-      !filter->GetOutput()->GetPointData()->GetNormals())
-    {
-      vtkErrorMacro(<< "Could not compute receiver normals (no polygons?); give point normals.");
-      return 0;
-    }
-    normals = filter->GetOutput()->GetPointData()->GetNormals();
+    vtkErrorMacro(<< "Receivers: " << error << ".");
+    return 0;
   }
   const vtkIdType n = receivers->GetNumberOfPoints();
-  std::vector<double> normal(3 * n), albedo(3 * n);
+  std::vector<double> albedo(3 * n);
   for (vtkIdType i = 0; i < n; ++i)
   {
-    double* nrm = &normal[3 * i];
-    normals->GetTuple(i, nrm);
-    if (!(vtkMath::Normalize(nrm) > 0.0) || !std::isfinite(nrm[0]) || !std::isfinite(nrm[1]) ||
-      !std::isfinite(nrm[2]))
-    {
-      nrm[0] = nrm[1] = 0.0;
-      nrm[2] = 1.0;
-    }
     proxygi::AlbedoOf(receivers, this->AlbedoArrayName, i, this->DefaultAlbedo, &albedo[3 * i]);
   }
 
@@ -436,9 +417,18 @@ int vtkPGILightCloudPrecompute::RequestData(
   key.AddValue(this->IncludeDirect);
   key.AddValue(this->Seed);
   key.AddValue(clamp);
+  const bool glossy = this->SpecularAlbedo > 0.0;
+  if (glossy)
+  {
+    key.AddValue(this->SpecularAlbedo);
+    key.AddValue(this->PhongExponent);
+    key.AddValue(this->GlossyOrder);
+  }
+  const int coefficients = glossy ? this->GlossyOrder * this->GlossyOrder : 1;
+  const int stride = 3 * coefficients;
 
   cloud->Initialize();
-  cloud->Allocate(lightCount, n);
+  cloud->Allocate(lightCount, n, coefficients);
   for (vtkIdType j = 0; j < lightCount; ++j)
   {
     cloud->GetLightPositions()->SetPoint(j, &lights[3 * j]);
@@ -462,13 +452,13 @@ int vtkPGILightCloudPrecompute::RequestData(
       return 0;
     }
     if (info.Key == key.Value && cached->GetNumberOfLights() == lightCount &&
-      cached->GetNumberOfReceivers() == n)
+      cached->GetNumberOfReceivers() == n && cached->GetCoefficients() == coefficients)
     {
       for (vtkIdType j = 0; j < lightCount; ++j)
       {
         if (info.Present[j])
         {
-          std::copy_n(cached->GetResponse(j), 3 * n, cloud->GetResponse(j));
+          std::copy_n(cached->GetResponse(j), stride * n, cloud->GetResponse(j));
           done[j] = 1;
         }
       }
@@ -545,9 +535,112 @@ int vtkPGILightCloudPrecompute::RequestData(
   }
   const double clamp2 = clamp * clamp;
   const double invSamples = 1.0 / this->Samples;
+  const proxygi::GlossyProjection projection(this->GlossyOrder, this->PhongExponent);
+  // A glossy receiver's frame, its gather hits' lobes (light-independent)
+  // and the irradiance each hit brings; rebuilt per receiver and block.
+  struct GlossyReceiver
+  {
+    vtkIdType Id = -1;
+    double Frame[9];
+    std::vector<double> ToWorld, Transfer, Local;
+  };
+  auto glossyResponse = [&](const double* p, vtkIdType i, GlossyReceiver& g, float* out)
+  {
+    double x[3];
+    receivers->GetPoint(i, x);
+    const double* nrm = &normal[3 * i];
+    const std::size_t count = hits[i].size();
+    if (g.Id != i)
+    {
+      g.Id = i;
+      projection.Frame(nrm, g.Frame, g.ToWorld);
+      std::vector<double> directions(3 * count);
+      for (std::size_t s = 0; s < count; ++s)
+      {
+        double w[3] = { hits[i][s].Position[0] - x[0], hits[i][s].Position[1] - x[1],
+          hits[i][s].Position[2] - x[2] };
+        vtkMath::Normalize(w);
+        proxygi::GlossyProjection::ToLocal(g.Frame, w, &directions[3 * s]);
+      }
+      projection.Lobes(directions.data(), static_cast<int>(count), g.Transfer);
+    }
+    const double o[3] = { x[0] + offset * nrm[0], x[1] + offset * nrm[1], x[2] + offset * nrm[2] };
+    // Local coefficients, coefficient-major, RGB inside.
+    g.Local.assign(static_cast<std::size_t>(stride), 0.0);
+    double e[3] = { 0, 0, 0 };
+    if (this->IncludeDirect)
+    {
+      double w[3] = { p[0] - x[0], p[1] - x[1], p[2] - x[2] };
+      const double d2 = vtkMath::Dot(w, w);
+      const double c = vtkMath::Dot(nrm, w) / std::sqrt(std::max(d2, 1e-300));
+      if (c > 0.0 && !tracer.SegmentBlocked(o, p))
+      {
+        const double irradiance = c / std::max(d2, clamp2);
+        e[0] = e[1] = e[2] = irradiance;
+        vtkMath::Normalize(w);
+        double local[3];
+        proxygi::GlossyProjection::ToLocal(g.Frame, w, local);
+        std::vector<double> lobe(static_cast<std::size_t>(coefficients), 0.0);
+        projection.AddLobe(local, this->SpecularAlbedo * irradiance, lobe.data());
+        for (int c2 = 0; c2 < coefficients; ++c2)
+        {
+          for (int k = 0; k < 3; ++k)
+          {
+            g.Local[3 * c2 + k] += lobe[c2];
+          }
+        }
+      }
+    }
+    for (std::size_t s = 0; s < count; ++s)
+    {
+      const auto& hit = hits[i][s];
+      const double y[3] = { hit.Position[0], hit.Position[1], hit.Position[2] };
+      const double w[3] = { p[0] - y[0], p[1] - y[1], p[2] - y[2] };
+      const double d2 = vtkMath::Dot(w, w);
+      const double c = (hit.Normal[0] * w[0] + hit.Normal[1] * w[1] + hit.Normal[2] * w[2]) /
+        std::sqrt(std::max(d2, 1e-300));
+      if (c > 0.0 && !tracer.SegmentBlocked(y, p))
+      {
+        const double gain = c / std::max(d2, clamp2) * invSamples;
+        for (int k = 0; k < 3; ++k)
+        {
+          const double irradiance = hit.Albedo[k] * gain;
+          e[k] += irradiance;
+          for (int c2 = 0; c2 < coefficients; ++c2)
+          {
+            g.Local[3 * c2 + k] += this->SpecularAlbedo * irradiance * g.Transfer[c2 * count + s];
+          }
+        }
+      }
+    }
+    // The Lambert part is constant over the hemisphere: coefficient 0.
+    for (int k = 0; k < 3; ++k)
+    {
+      g.Local[k] +=
+        albedo[3 * i + k] / vtkMath::Pi() * e[k] * proxygi::GlossyProjection::ConstantCoefficient();
+    }
+    for (int r = 0; r < coefficients; ++r)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        double v = 0.0;
+        for (int c2 = 0; c2 < coefficients; ++c2)
+        {
+          v += g.ToWorld[static_cast<std::size_t>(r) * coefficients + c2] * g.Local[3 * c2 + k];
+        }
+        out[3 * r + k] = static_cast<float>(v);
+      }
+    }
+  };
   // Receiver i's exit radiance from a unit point light at p.
   auto response = [&](const double* p, vtkIdType i, float* out)
   {
+    if (glossy)
+    {
+      GlossyReceiver g;
+      glossyResponse(p, i, g, out);
+      return;
+    }
     double x[3];
     receivers->GetPoint(i, x);
     const double* nrm = &normal[3 * i];
@@ -585,18 +678,28 @@ int vtkPGILightCloudPrecompute::RequestData(
       out[k] = static_cast<float>(albedo[3 * i + k] / vtkMath::Pi() * e[k]);
     }
   };
-  const std::size_t block = 4;
+  // Glossy receivers share their lobes over a block: larger blocks.
+  const std::size_t block = glossy ? 16 : 4;
   for (std::size_t b0 = 0; b0 < todo.size() && !this->GetAbortExecute(); b0 += block)
   {
     const std::size_t b1 = std::min(todo.size(), b0 + block);
     vtkSMPTools::For(0, n,
       [&](vtkIdType first, vtkIdType last)
       {
+        GlossyReceiver g;
         for (vtkIdType i = first; i < last; ++i)
         {
           for (std::size_t b = b0; b < b1; ++b)
           {
-            response(&lights[3 * todo[b]], i, cloud->GetResponse(todo[b]) + 3 * i);
+            float* out = cloud->GetResponse(todo[b]) + stride * i;
+            if (glossy)
+            {
+              glossyResponse(&lights[3 * todo[b]], i, g, out);
+            }
+            else
+            {
+              response(&lights[3 * todo[b]], i, out);
+            }
           }
         }
       });
@@ -637,6 +740,7 @@ void vtkPGILightCloudPrecompute::CompressCloud(vtkPGILightCloud* cloud, vtkPolyD
   const std::function<void(const double*, vtkIdType, float*)>& response)
 {
   const vtkIdType n = receivers->GetNumberOfPoints();
+  const int stride = cloud->GetValuesPerReceiver();
   const vtkIdType lightCount = static_cast<vtkIdType>(lights.size() / 3);
   const std::size_t nl = static_cast<std::size_t>(lightCount);
   std::vector<double> points(static_cast<std::size_t>(3 * n));
@@ -686,17 +790,18 @@ void vtkPGILightCloudPrecompute::CompressCloud(vtkPGILightCloud* cloud, vtkPolyD
     zone.Receivers = zoneIds[z];
     const vtkIdType r = static_cast<vtkIdType>(zone.Receivers.size());
     // The zone's dense responses, light-major.
-    std::vector<std::vector<float>> dense(nl, std::vector<float>(static_cast<std::size_t>(3 * r)));
+    std::vector<std::vector<float>> dense(
+      nl, std::vector<float>(static_cast<std::size_t>(stride) * static_cast<std::size_t>(r)));
     double largest = 0.0;
     for (std::size_t j = 0; j < nl; ++j)
     {
       const float* all = cloud->GetResponse(static_cast<vtkIdType>(j));
       for (vtkIdType c = 0; c < r; ++c)
       {
-        for (int k = 0; k < 3; ++k)
+        for (int k = 0; k < stride; ++k)
         {
-          dense[j][3 * c + k] = all[3 * zone.Receivers[c] + k];
-          largest = std::max(largest, static_cast<double>(std::fabs(dense[j][3 * c + k])));
+          dense[j][stride * c + k] = all[stride * zone.Receivers[c] + k];
+          largest = std::max(largest, static_cast<double>(std::fabs(dense[j][stride * c + k])));
         }
       }
     }
@@ -707,15 +812,15 @@ void vtkPGILightCloudPrecompute::CompressCloud(vtkPGILightCloud* cloud, vtkPolyD
     }
     const double w2 = largest > 0.0 ? 1.0 / (this->MergeTolerance * largest) : 0.0;
     const proxygi::MergedLights merged =
-      proxygi::ClusterLights(pointers, lights, r, w1, w2, visible);
+      proxygi::ClusterLights(pointers, lights, r, w1, w2, visible, stride);
     const int k = static_cast<int>(merged.Members.size());
     zone.Lights = merged.Positions;
     for (const auto& members : merged.Members)
     {
       zone.LightMembers.push_back(static_cast<int>(members.size()));
     }
-    // Rows: per receiver, RGB per cluster light.
-    zone.Dimension = 3 * k;
+    // Rows: per receiver, its values (RGB per coefficient) per cluster light.
+    zone.Dimension = stride * k;
     std::vector<float> rows(static_cast<std::size_t>(r) * zone.Dimension, 0.0f);
     vtkSMPTools::For(0, r,
       [&](vtkIdType first, vtkIdType last)
@@ -728,14 +833,15 @@ void vtkPGILightCloudPrecompute::CompressCloud(vtkPGILightCloud* cloud, vtkPolyD
             const auto& members = merged.Members[q];
             if (this->MergedResponse == RECOMPUTED_RESPONSE && members.size() > 1)
             {
-              response(&zone.Lights[3 * q], zone.Receivers[c], row + 3 * q);
+              response(&zone.Lights[3 * q], zone.Receivers[c], row + stride * q);
               continue;
             }
             for (vtkIdType m : members)
             {
-              for (int a = 0; a < 3; ++a)
+              for (int a = 0; a < stride; ++a)
               {
-                row[3 * q + a] += dense[m][3 * c + a] / static_cast<float>(members.size());
+                row[stride * q + a] +=
+                  dense[m][stride * c + a] / static_cast<float>(members.size());
               }
             }
           }
@@ -778,6 +884,9 @@ void vtkPGILightCloudPrecompute::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "Samples: " << this->Samples << "\n";
   os << indent << "IncludeDirect: " << this->IncludeDirect << "\n";
+  os << indent << "SpecularAlbedo: " << this->SpecularAlbedo
+     << ", PhongExponent: " << this->PhongExponent << ", GlossyOrder: " << this->GlossyOrder
+     << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "ClampDistance: " << this->ClampDistance << "\n";
   os << indent << "CacheFileName: " << (this->CacheFileName ? this->CacheFileName : "(none)")

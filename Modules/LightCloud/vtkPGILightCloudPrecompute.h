@@ -20,6 +20,15 @@
  *    when p is visible from y: Samples cosine-distributed rays per receiver
  *    are traced once and their hits lit by every cloud light (the paper's
  *    photon map with a final gather replaced by the final gather alone).
+ *
+ * Glossy receivers (SpecularAlbedo ks > 0): the BRDF is a/pi plus the
+ * normalised Phong lobe ks (e+2)/(2 pi) cos^e of PhongExponent e, and the
+ * response is the exit radiance as a function of the view direction,
+ * projected on SH of GlossyOrder (16 coefficients per colour at order 4,
+ * the paper's "third order") by least squares over the hemisphere. The
+ * other scene objects and the gather hits stay diffuse (one bounce of
+ * glossy-to-glossy light is not carried).
+ *
  * Distances below ClampDistance (default: 1e-3 of the scene size) count as
  * it, so a light almost on a surface stays finite.
  *
@@ -73,6 +82,15 @@ public:
   vtkSetMacro(IncludeDirect, bool);
   vtkGetMacro(IncludeDirect, bool);
   vtkBooleanMacro(IncludeDirect, bool);
+  /// Phong coefficient ks of the receivers (0: diffuse, one coefficient).
+  vtkSetClampMacro(SpecularAlbedo, double, 0.0, 1.0);
+  vtkGetMacro(SpecularAlbedo, double);
+  /// Phong exponent e (the paper's glossy bunny: 12).
+  vtkSetClampMacro(PhongExponent, double, 0.0, 1e4);
+  vtkGetMacro(PhongExponent, double);
+  /// SH order of glossy responses (order^2 coefficients per colour).
+  vtkSetClampMacro(GlossyOrder, int, 1, 8);
+  vtkGetMacro(GlossyOrder, int);
   vtkSetMacro(Seed, unsigned int);
   vtkGetMacro(Seed, unsigned int);
   vtkSetVector3Macro(DefaultAlbedo, double);
@@ -172,6 +190,9 @@ protected:
   vtkPoints* LightPositions = nullptr;
   int Samples = 64;
   bool IncludeDirect = false;
+  double SpecularAlbedo = 0.0;
+  double PhongExponent = 12.0;
+  int GlossyOrder = 4;
   unsigned int Seed = 1;
   double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
   char* AlbedoArrayName = nullptr;

@@ -1,5 +1,6 @@
 #include "vtkPGILightCloudRelight.h"
 
+#include "pgiLightCloudGlossy.h"
 #include "vtkPGILightCloud.h"
 #include "vtkPGIOccluder.h"
 
@@ -101,6 +102,28 @@ void vtkPGILightCloudRelight::SetLightIntensity(int index, double r, double g, d
   }
 }
 
+void vtkPGILightCloudRelight::SetViewPoint(double x, double y, double z)
+{
+  if (!this->ViewPointSet || this->ViewPoint[0] != x || this->ViewPoint[1] != y ||
+    this->ViewPoint[2] != z)
+  {
+    this->ViewPoint[0] = x;
+    this->ViewPoint[1] = y;
+    this->ViewPoint[2] = z;
+    this->ViewPointSet = true;
+    this->Modified();
+  }
+}
+
+void vtkPGILightCloudRelight::RemoveViewPoint()
+{
+  if (this->ViewPointSet)
+  {
+    this->ViewPointSet = false;
+    this->Modified();
+  }
+}
+
 void vtkPGILightCloudRelight::RemoveAllLights()
 {
   if (!this->Lights.empty())
@@ -169,6 +192,11 @@ int vtkPGILightCloudRelight::RequestData(
       return 0;
     }
   }
+  if (this->ViewPointSet && !Finite3(this->ViewPoint))
+  {
+    vtkErrorMacro(<< "The view point is NaN or Inf.");
+    return 0;
+  }
   std::string error;
   if (this->Occluder && !this->Occluder->Prepare(error))
   {
@@ -193,7 +221,13 @@ int vtkPGILightCloudRelight::RequestData(
   const double spacing = cloud->GetSpacing();
   double box[6];
   cloud->GetLightBounds(box);
-  const double margin = 0.5 * spacing + 1e-9 * (1.0 + std::fabs(box[1]) + std::fabs(box[3]));
+  // Float slack too: positions often come through float vtkPoints.
+  double extent = 1.0;
+  for (double b : box)
+  {
+    extent = std::max(extent, std::fabs(b));
+  }
+  const double margin = 0.5 * spacing + 1e-6 * extent;
   std::vector<char> inside(this->Lights.size(), 1);
   for (std::size_t k = 0; k < this->Lights.size(); ++k)
   {
@@ -242,9 +276,11 @@ int vtkPGILightCloudRelight::RequestData(
     this->LocatorTime = cloud->GetMTime();
   }
 
+  // What each receiver gets: RGB, or RGB per SH coefficient (glossy).
+  const int stride = cloud->GetValuesPerReceiver();
   vtkNew<vtkFloatArray> radiance;
-  radiance->SetName("LightCloudRadiance");
-  radiance->SetNumberOfComponents(3);
+  radiance->SetName(stride > 3 ? "LightCloudRadianceSH" : "LightCloudRadiance");
+  radiance->SetNumberOfComponents(stride);
   radiance->SetNumberOfTuples(n);
   radiance->Fill(0.0);
   float* values = radiance->GetPointer(0);
@@ -287,18 +323,14 @@ int vtkPGILightCloudRelight::RequestData(
         {
           for (vtkIdType i = first; i < last; ++i)
           {
-            double sum[3] = { 0, 0, 0 };
+            float* o = values + static_cast<std::ptrdiff_t>(stride) * i;
             for (const auto& [j, w] : weights)
             {
-              const float* x = cloud->GetResponse(j) + 3 * i;
-              for (int c = 0; c < 3; ++c)
+              const float* x = cloud->GetResponse(j) + static_cast<std::ptrdiff_t>(stride) * i;
+              for (int c = 0; c < stride; ++c)
               {
-                sum[c] += w[c] * x[c];
+                o[c] += static_cast<float>(w[c % 3] * x[c]);
               }
-            }
-            for (int c = 0; c < 3; ++c)
-            {
-              values[3 * i + c] = static_cast<float>(sum[c]);
             }
           }
         });
@@ -309,26 +341,26 @@ int vtkPGILightCloudRelight::RequestData(
     const vtkPGILightCloud::Zone& zone = cloud->GetZones()[set];
     const int clusters = static_cast<int>(zone.BasisCount.size());
     const int dim = zone.Dimension;
-    auto project = [&](const float* v, double result[3])
+    auto project = [&](const float* v, double* result)
     {
-      result[0] = result[1] = result[2] = 0.0;
+      std::fill_n(result, stride, 0.0);
       for (const auto& [j, w] : weights)
       {
-        for (int c = 0; c < 3; ++c)
+        for (int c = 0; c < stride; ++c)
         {
-          result[c] += w[c] * v[3 * j + c];
+          result[c] += w[c % 3] * v[stride * j + c];
         }
       }
     };
-    std::vector<double> xm(static_cast<std::size_t>(3 * clusters));
-    std::vector<double> bi(zone.Basis.size() / std::max(1, dim) * 3);
+    std::vector<double> xm(static_cast<std::size_t>(stride) * clusters);
+    std::vector<double> bi(zone.Basis.size() / std::max(1, dim) * stride);
     for (int q = 0; q < clusters; ++q)
     {
-      project(&zone.Means[static_cast<std::size_t>(q) * dim], &xm[3 * q]);
+      project(&zone.Means[static_cast<std::size_t>(q) * dim], &xm[stride * q]);
       for (int v = 0; v < zone.BasisCount[q]; ++v)
       {
         const int vector = zone.BasisStart[q] + v;
-        project(&zone.Basis[static_cast<std::size_t>(vector) * dim], &bi[3 * vector]);
+        project(&zone.Basis[static_cast<std::size_t>(vector) * dim], &bi[stride * vector]);
       }
     }
     const vtkIdType zoneReceivers = static_cast<vtkIdType>(zone.Receivers.size());
@@ -338,20 +370,16 @@ int vtkPGILightCloudRelight::RequestData(
         for (vtkIdType r = first; r < last; ++r)
         {
           const int q = zone.Cluster[r];
-          double a[3] = { xm[3 * q], xm[3 * q + 1], xm[3 * q + 2] };
           const float* z = &zone.Weights[zone.WeightStart[r]];
-          for (int v = 0; v < zone.BasisCount[q]; ++v)
+          float* o = values + static_cast<std::ptrdiff_t>(stride) * zone.Receivers[r];
+          for (int c = 0; c < stride; ++c)
           {
-            const double* b = &bi[3 * (zone.BasisStart[q] + v)];
-            for (int c = 0; c < 3; ++c)
+            double a = xm[static_cast<std::size_t>(stride) * q + c];
+            for (int v = 0; v < zone.BasisCount[q]; ++v)
             {
-              a[c] += z[v] * b[c];
+              a += z[v] * bi[static_cast<std::size_t>(stride) * (zone.BasisStart[q] + v) + c];
             }
-          }
-          float* o = values + 3 * zone.Receivers[r];
-          for (int c = 0; c < 3; ++c)
-          {
-            o[c] = static_cast<float>(a[c]);
+            o[c] = static_cast<float>(a);
           }
         }
       });
@@ -373,6 +401,11 @@ int vtkPGILightCloudRelight::RequestData(
          << (cloud->GetContents() == vtkPGILightCloud::IndirectOnly ? "indirect light only"
                                                                     : "direct and indirect light")
          << ", ";
+    if (stride > 3)
+    {
+      line << "glossy receivers (" << stride / 3 << " SH coefficients per colour, seen "
+           << (this->ViewPointSet ? "from the view point" : "along the normals") << "), ";
+    }
     if (cloud->IsCompressed())
     {
       line << "compressed (" << cloud->GetNumberOfZones() << " zones, "
@@ -416,6 +449,51 @@ int vtkPGILightCloudRelight::RequestData(
   }
   output->ShallowCopy(receivers);
   output->GetPointData()->AddArray(radiance);
+  if (stride > 3)
+  {
+    // Glossy: the SH evaluated toward the viewer (or along the normal).
+    std::vector<double> normals;
+    if (!this->ViewPointSet && !proxygi::ReceiverNormals(receivers, normals, error))
+    {
+      vtkErrorMacro(<< "Glossy receivers without a view point: " << error << ".");
+      return 0;
+    }
+    const int order = static_cast<int>(std::lround(std::sqrt(stride / 3)));
+    vtkNew<vtkFloatArray> seen;
+    seen->SetName("LightCloudRadiance");
+    seen->SetNumberOfComponents(3);
+    seen->SetNumberOfTuples(n);
+    float* s = seen->GetPointer(0);
+    vtkSMPTools::For(0, n,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType i = first; i < last; ++i)
+        {
+          double wo[3] = { 0.0, 0.0, 1.0 };
+          if (this->ViewPointSet)
+          {
+            double x[3];
+            receivers->GetPoint(i, x);
+            vtkMath::Subtract(this->ViewPoint, x, wo);
+            if (!(vtkMath::Normalize(wo) > 0.0))
+            {
+              wo[0] = wo[1] = 0.0;
+              wo[2] = 1.0;
+            }
+          }
+          else
+          {
+            std::copy_n(&normals[3 * i], 3, wo);
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            s[3 * i + c] = static_cast<float>(proxygi::GlossyProjection::Evaluate(
+              order, values + static_cast<std::ptrdiff_t>(stride) * i + c, 3, wo));
+          }
+        }
+      });
+    output->GetPointData()->AddArray(seen);
+  }
   output->GetFieldData()->AddArray(planArray);
   vtkNew<vtkIntArray> usedField;
   usedField->SetName("LightCloudLightsUsed");
@@ -439,15 +517,30 @@ bool vtkPGILightCloudRelight::WeighLights(int k, vtkStaticPointLocator* locator,
   vtkNew<vtkIdList> nearest, within;
   locator->FindClosestNPoints(
     static_cast<int>(std::min<vtkIdType>(this->NeighborCount, count)), l, nearest);
-  double farthest = 0.0;
+  double farthest = 0.0, closest = VTK_DOUBLE_MAX;
+  vtkIdType closestId = -1;
   for (vtkIdType q = 0; q < nearest->GetNumberOfIds(); ++q)
   {
     double p[3];
     set->GetPoint(nearest->GetId(q), p);
-    farthest = std::max(farthest, std::sqrt(vtkMath::Distance2BetweenPoints(l, p)));
+    const double d = std::sqrt(vtkMath::Distance2BetweenPoints(l, p));
+    farthest = std::max(farthest, d);
+    if (d < closest)
+    {
+      closest = d;
+      closestId = nearest->GetId(q);
+    }
   }
-  const double r = this->RadiusScale * farthest;
-  if (r > 0.0)
+  // On a cloud light (to float precision): that light alone.
+  const double onLight =
+    1e-6 * (spacing > 0.0 ? spacing : 1.0 + std::fabs(l[0]) + std::fabs(l[1]) + std::fabs(l[2]));
+  double r = this->RadiusScale * farthest;
+  if (closestId >= 0 && closest <= onLight)
+  {
+    r = 0.0;
+    within->InsertNextId(closestId);
+  }
+  else if (r > 0.0)
   {
     locator->FindPointsWithinRadius(r, l, within);
   }
@@ -546,6 +639,15 @@ bool vtkPGILightCloudRelight::WeighLights(int k, vtkStaticPointLocator* locator,
 void vtkPGILightCloudRelight::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "ViewPoint: ";
+  if (this->ViewPointSet)
+  {
+    os << this->ViewPoint[0] << " " << this->ViewPoint[1] << " " << this->ViewPoint[2] << "\n";
+  }
+  else
+  {
+    os << "(none: glossy receivers seen along their normals)\n";
+  }
   os << indent << "Lights: " << this->Lights.size() << "\n";
   for (const UserLight& l : this->Lights)
   {

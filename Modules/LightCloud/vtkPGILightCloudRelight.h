@@ -9,6 +9,12 @@
  * exit radiance the user lights cause, as the cloud holds it (indirect only,
  * or direct and indirect: see the cloud's Contents).
  *
+ * A glossy cloud (SH coefficients per colour, see vtkPGILightCloud) also
+ * gives "LightCloudRadianceSH" (RGB per coefficient, world frame: a viewer
+ * evaluates it at its direction, per fragment if it likes), and
+ * "LightCloudRadiance" is it evaluated toward ViewPoint, or along each
+ * receiver's normal while no view point is set.
+ *
  * Per user light at l with intensity I (W/sr, RGB): the m = NeighborCount
  * nearest cloud lights (vtkStaticPointLocator) set r = RadiusScale times the
  * distance of the m-th; every cloud light j within r weighs
@@ -16,7 +22,8 @@
  * paper's r is the m-th light's own distance; with that, a user light at the
  * centre of a grid cell has its m lights on one shell, all weighing almost
  * 0, and the normalised weights jump as it moves: RadiusScale > 1 keeps the
- * weights continuous everywhere.
+ * weights continuous everywhere. A user light on a cloud light (within 1e-6 of the
+ * spacing: float positions) takes that light alone, whatever m.
  *
  * Visibility: with an Occluder (vtkPGIMeshOccluder of the scene's meshes),
  * only cloud lights visible from l count: VisibilityRays rays from l to
@@ -72,6 +79,13 @@ public:
   void RemoveAllLights();
   int GetNumberOfLights() const { return static_cast<int>(this->Lights.size()); }
 
+  /// Where glossy receivers are seen from (a camera position).
+  void SetViewPoint(double x, double y, double z);
+  void SetViewPoint(const double p[3]) { this->SetViewPoint(p[0], p[1], p[2]); }
+  const double* GetViewPoint() const { return this->ViewPoint; }
+  void RemoveViewPoint();
+  bool HasViewPoint() const { return this->ViewPointSet; }
+
   vtkSetClampMacro(NeighborCount, int, 1, 4096);
   vtkGetMacro(NeighborCount, int);
   vtkSetClampMacro(RadiusScale, double, 1.0, 100.0);
@@ -114,6 +128,8 @@ protected:
     double Intensity[3];
   };
   std::vector<UserLight> Lights;
+  double ViewPoint[3] = { 0.0, 0.0, 0.0 };
+  bool ViewPointSet = false;
   int NeighborCount = 8;
   double RadiusScale = 1.5;
   vtkPGIOccluder* Occluder = nullptr;
