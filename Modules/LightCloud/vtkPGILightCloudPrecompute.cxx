@@ -536,6 +536,17 @@ int vtkPGILightCloudPrecompute::RequestData(
   const double clamp2 = clamp * clamp;
   const double invSamples = 1.0 / this->Samples;
   const proxygi::GlossyProjection projection(this->GlossyOrder, this->PhongExponent);
+  // What a gather hit passes on from a unit light at p, per unit albedo:
+  // its irradiance over Samples (0 when the light does not reach it).
+  auto hitGain = [&](const proxygi::ReferenceTracer::GatherHit& hit, const double* p)
+  {
+    const double y[3] = { hit.Position[0], hit.Position[1], hit.Position[2] };
+    const double w[3] = { p[0] - y[0], p[1] - y[1], p[2] - y[2] };
+    const double d2 = vtkMath::Dot(w, w);
+    const double c = (hit.Normal[0] * w[0] + hit.Normal[1] * w[1] + hit.Normal[2] * w[2]) /
+      std::sqrt(std::max(d2, 1e-300));
+    return c > 0.0 && !tracer.SegmentBlocked(y, p) ? c / std::max(d2, clamp2) * invSamples : 0.0;
+  };
   // A glossy receiver's frame, its gather hits' lobes (light-independent)
   // and the irradiance each hit brings; rebuilt per receiver and block.
   struct GlossyReceiver
@@ -594,14 +605,9 @@ int vtkPGILightCloudPrecompute::RequestData(
     for (std::size_t s = 0; s < count; ++s)
     {
       const auto& hit = hits[i][s];
-      const double y[3] = { hit.Position[0], hit.Position[1], hit.Position[2] };
-      const double w[3] = { p[0] - y[0], p[1] - y[1], p[2] - y[2] };
-      const double d2 = vtkMath::Dot(w, w);
-      const double c = (hit.Normal[0] * w[0] + hit.Normal[1] * w[1] + hit.Normal[2] * w[2]) /
-        std::sqrt(std::max(d2, 1e-300));
-      if (c > 0.0 && !tracer.SegmentBlocked(y, p))
+      const double gain = hitGain(hit, p);
+      if (gain > 0.0)
       {
-        const double gain = c / std::max(d2, clamp2) * invSamples;
         for (int k = 0; k < 3; ++k)
         {
           const double irradiance = hit.Albedo[k] * gain;
@@ -659,18 +665,10 @@ int vtkPGILightCloudPrecompute::RequestData(
     }
     for (const auto& hit : hits[i])
     {
-      const double y[3] = { hit.Position[0], hit.Position[1], hit.Position[2] };
-      const double w[3] = { p[0] - y[0], p[1] - y[1], p[2] - y[2] };
-      const double d2 = vtkMath::Dot(w, w);
-      const double c = (hit.Normal[0] * w[0] + hit.Normal[1] * w[1] + hit.Normal[2] * w[2]) /
-        std::sqrt(std::max(d2, 1e-300));
-      if (c > 0.0 && !tracer.SegmentBlocked(y, p))
+      const double g = hitGain(hit, p);
+      for (int k = 0; k < 3; ++k)
       {
-        const double g = c / std::max(d2, clamp2) * invSamples;
-        for (int k = 0; k < 3; ++k)
-        {
-          e[k] += hit.Albedo[k] * g;
-        }
+        e[k] += hit.Albedo[k] * g;
       }
     }
     for (int k = 0; k < 3; ++k)
