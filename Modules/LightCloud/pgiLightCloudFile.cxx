@@ -13,6 +13,7 @@ namespace proxygi
 namespace
 {
 const char Magic[8] = { 'P', 'G', 'I', 'C', 'L', 'O', 'U', 'D' };
+const char CompressedMagic[8] = { 'P', 'G', 'I', 'C', 'L', 'C', 'M', 'P' };
 const std::uint32_t Version = 1;
 
 struct Hash
@@ -121,9 +122,270 @@ bool AppendLightCloudRecords(const std::string& path, vtkPGILightCloud* cloud,
   return true;
 }
 
+namespace
+{
+// The compressed file's arrays: a count, then the values.
+template <typename T>
+void PutArray(std::string& bytes, const std::vector<T>& v)
+{
+  const std::uint64_t count = v.size();
+  bytes.append(reinterpret_cast<const char*>(&count), sizeof(count));
+  bytes.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+}
+
+struct BlockReader
+{
+  const std::string& Bytes;
+  std::size_t At = 0;
+  bool Ok = true;
+  template <typename T>
+  void Get(std::vector<T>& v)
+  {
+    std::uint64_t count = 0;
+    if (!this->Ok || this->Bytes.size() - this->At < sizeof(count))
+    {
+      this->Ok = false;
+      return;
+    }
+    std::memcpy(&count, this->Bytes.data() + this->At, sizeof(count));
+    this->At += sizeof(count);
+    if (count > (this->Bytes.size() - this->At) / sizeof(T))
+    {
+      this->Ok = false;
+      return;
+    }
+    v.resize(static_cast<std::size_t>(count));
+    std::memcpy(v.data(), this->Bytes.data() + this->At, v.size() * sizeof(T));
+    this->At += v.size() * sizeof(T);
+  }
+};
+
+std::string ZoneBytes(const vtkPGILightCloud::Zone& z)
+{
+  std::string bytes;
+  const std::vector<std::int64_t> receivers(z.Receivers.begin(), z.Receivers.end());
+  PutArray(bytes, receivers);
+  PutArray(bytes, z.Lights);
+  PutArray(bytes, z.LightMembers);
+  PutArray(bytes, std::vector<std::int32_t>{ z.Dimension });
+  PutArray(bytes, z.Cluster);
+  PutArray(bytes, z.Means);
+  PutArray(bytes, z.BasisStart);
+  PutArray(bytes, z.BasisCount);
+  PutArray(bytes, z.Basis);
+  PutArray(bytes, z.WeightStart);
+  PutArray(bytes, z.Weights);
+  return bytes;
+}
+
+// Every index of a zone inside its arrays (a file can pass its checksums
+// and still not add up).
+bool ZoneConsistent(const vtkPGILightCloud::Zone& z, vtkIdType receivers, int values)
+{
+  const std::size_t r = z.Receivers.size(), clusters = z.BasisCount.size();
+  const std::size_t lights = z.Lights.size() / 3;
+  if (z.Lights.size() % 3 || z.Dimension != static_cast<int>(values * lights) ||
+    z.Cluster.size() != r || z.WeightStart.size() != r || z.BasisStart.size() != clusters ||
+    z.Means.size() != clusters * static_cast<std::size_t>(z.Dimension) ||
+    (z.Dimension > 0 && z.Basis.size() % static_cast<std::size_t>(z.Dimension)))
+  {
+    return false;
+  }
+  const std::size_t vectors = z.Dimension > 0 ? z.Basis.size() / z.Dimension : 0;
+  for (std::size_t q = 0; q < clusters; ++q)
+  {
+    if (z.BasisStart[q] < 0 || z.BasisCount[q] < 0 ||
+      static_cast<std::size_t>(z.BasisStart[q]) + z.BasisCount[q] > vectors)
+    {
+      return false;
+    }
+  }
+  for (std::size_t k = 0; k < r; ++k)
+  {
+    if (z.Receivers[k] < 0 || z.Receivers[k] >= receivers || z.Cluster[k] < 0 ||
+      static_cast<std::size_t>(z.Cluster[k]) >= clusters || z.WeightStart[k] < 0 ||
+      static_cast<std::size_t>(z.WeightStart[k]) + z.BasisCount[z.Cluster[k]] > z.Weights.size())
+    {
+      return false;
+    }
+  }
+  for (double p : z.Lights)
+  {
+    if (!std::isfinite(p))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool WriteCompressedLightCloud(
+  const std::string& path, vtkPGILightCloud* cloud, std::uint64_t key, std::string& error)
+{
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out)
+  {
+    error = "cannot write the light cloud file '" + path + "'";
+    return false;
+  }
+  Header header;
+  std::memcpy(header.Magic, CompressedMagic, sizeof(CompressedMagic));
+  header.Version = Version;
+  header.Contents = static_cast<std::uint32_t>(cloud->GetContents());
+  header.Samples = cloud->GetSamples();
+  header.Coefficients = static_cast<std::uint32_t>(cloud->GetCoefficients());
+  header.Key = key;
+  header.ReceiverKey = cloud->GetReceiverKey();
+  header.Receivers = static_cast<std::uint64_t>(cloud->GetNumberOfReceivers());
+  header.Lights = static_cast<std::uint64_t>(cloud->GetNumberOfLights());
+  std::vector<double> positions(3 * header.Lights);
+  for (vtkIdType j = 0; j < cloud->GetNumberOfLights(); ++j)
+  {
+    cloud->GetLightPositions()->GetPoint(j, &positions[3 * j]);
+  }
+  const std::uint64_t zones = cloud->GetZones().size();
+  Hash h;
+  h.Add(&header, sizeof(header));
+  h.Add(positions.data(), positions.size() * sizeof(double));
+  h.Add(&zones, sizeof(zones));
+  out.write(reinterpret_cast<const char*>(&header), sizeof(header));
+  out.write(reinterpret_cast<const char*>(positions.data()),
+    static_cast<std::streamsize>(positions.size() * sizeof(double)));
+  out.write(reinterpret_cast<const char*>(&zones), sizeof(zones));
+  out.write(reinterpret_cast<const char*>(&h.Value), sizeof(h.Value));
+  for (const vtkPGILightCloud::Zone& zone : cloud->GetZones())
+  {
+    const std::string bytes = ZoneBytes(zone);
+    const std::uint64_t size = bytes.size();
+    Hash z;
+    z.Add(&size, sizeof(size));
+    z.Add(bytes.data(), bytes.size());
+    out.write(reinterpret_cast<const char*>(&size), sizeof(size));
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.write(reinterpret_cast<const char*>(&z.Value), sizeof(z.Value));
+  }
+  out.flush();
+  if (!out)
+  {
+    error = "writing the light cloud file '" + path + "' failed";
+    return false;
+  }
+  return true;
+}
+
+bool ReadCompressedLightCloud(std::ifstream& in, std::uint64_t fileSize, const Header& header,
+  const std::string& where, vtkPGILightCloud* cloud, LightCloudFileInfo& info, std::string& error)
+{
+  const std::uint64_t rest = fileSize - sizeof(Header);
+  if (header.Lights > rest / 24)
+  {
+    error = where + "corrupted header (more lights than the file holds)";
+    return false;
+  }
+  std::vector<double> positions(3 * header.Lights);
+  std::uint64_t zones = 0, stored = 0;
+  in.read(reinterpret_cast<char*>(positions.data()),
+    static_cast<std::streamsize>(positions.size() * sizeof(double)));
+  in.read(reinterpret_cast<char*>(&zones), sizeof(zones));
+  in.read(reinterpret_cast<char*>(&stored), sizeof(stored));
+  Hash h;
+  h.Add(&header, sizeof(header));
+  h.Add(positions.data(), positions.size() * sizeof(double));
+  h.Add(&zones, sizeof(zones));
+  if (!in || stored != h.Value)
+  {
+    error = where + "corrupted header (checksum mismatch)";
+    return false;
+  }
+  const std::uint64_t coefficients = std::max<std::uint32_t>(1, header.Coefficients);
+  const std::uint64_t order = static_cast<std::uint64_t>(std::lround(std::sqrt(coefficients)));
+  if (header.Contents > 1 || header.Receivers > (1ull << 32) || order * order != coefficients ||
+    order > 8 || zones > header.Receivers || zones > (1ull << 20))
+  {
+    error = where + "header sizes out of range";
+    return false;
+  }
+  for (double p : positions)
+  {
+    if (!std::isfinite(p))
+    {
+      error = where + "a cloud light position is NaN or infinite";
+      return false;
+    }
+  }
+  std::vector<vtkPGILightCloud::Zone> read(static_cast<std::size_t>(zones));
+  const int values = static_cast<int>(3 * coefficients);
+  for (std::uint64_t z = 0; z < zones; ++z)
+  {
+    const std::uint64_t offset = static_cast<std::uint64_t>(in.tellg());
+    std::uint64_t size = 0, check = 0;
+    if (!in.read(reinterpret_cast<char*>(&size), sizeof(size)) ||
+      size > fileSize - std::min(fileSize, offset + 16))
+    {
+      error =
+        where + "zone " + std::to_string(z) + " is cut short (byte " + std::to_string(offset) + ")";
+      return false;
+    }
+    std::string bytes(static_cast<std::size_t>(size), '\0');
+    in.read(&bytes[0], static_cast<std::streamsize>(size));
+    in.read(reinterpret_cast<char*>(&check), sizeof(check));
+    Hash r;
+    r.Add(&size, sizeof(size));
+    r.Add(bytes.data(), bytes.size());
+    if (!in || check != r.Value)
+    {
+      error = where + "corrupted zone " + std::to_string(z) + " at byte " + std::to_string(offset);
+      return false;
+    }
+    BlockReader b{ bytes };
+    vtkPGILightCloud::Zone& zone = read[z];
+    std::vector<std::int64_t> receivers;
+    std::vector<std::int32_t> dimension;
+    b.Get(receivers);
+    b.Get(zone.Lights);
+    b.Get(zone.LightMembers);
+    b.Get(dimension);
+    b.Get(zone.Cluster);
+    b.Get(zone.Means);
+    b.Get(zone.BasisStart);
+    b.Get(zone.BasisCount);
+    b.Get(zone.Basis);
+    b.Get(zone.WeightStart);
+    b.Get(zone.Weights);
+    zone.Receivers.assign(receivers.begin(), receivers.end());
+    zone.Dimension = dimension.size() == 1 ? dimension[0] : -1;
+    if (!b.Ok || b.At != bytes.size() ||
+      !ZoneConsistent(zone, static_cast<vtkIdType>(header.Receivers), values))
+    {
+      error = where + "zone " + std::to_string(z) + " does not add up (indices out of range)";
+      return false;
+    }
+  }
+  const vtkIdType lights = static_cast<vtkIdType>(header.Lights);
+  cloud->Allocate(0, static_cast<vtkIdType>(header.Receivers), static_cast<int>(coefficients));
+  cloud->GetLightPositions()->SetNumberOfPoints(lights);
+  for (vtkIdType j = 0; j < lights; ++j)
+  {
+    cloud->GetLightPositions()->SetPoint(j, &positions[3 * j]);
+  }
+  cloud->SetContents(static_cast<int>(header.Contents));
+  cloud->SetSamples(header.Samples);
+  cloud->SetReceiverKey(header.ReceiverKey);
+  cloud->SetZones(std::move(read));
+  info.Key = header.Key;
+  info.Present.assign(static_cast<std::size_t>(lights), 1);
+  info.LightsRead = lights;
+  return true;
+}
+} // namespace
+
 bool WriteLightCloud(
   const std::string& path, vtkPGILightCloud* cloud, std::uint64_t key, std::string& error)
 {
+  if (cloud->IsCompressed())
+  {
+    return WriteCompressedLightCloud(path, cloud, key, error);
+  }
   std::vector<vtkIdType> all(static_cast<std::size_t>(cloud->GetNumberOfLights()));
   for (std::size_t j = 0; j < all.size(); ++j)
   {
@@ -152,7 +414,8 @@ bool ReadLightCloud(
     error = where + "too short for a header";
     return false;
   }
-  if (std::memcmp(header.Magic, Magic, sizeof(Magic)) != 0)
+  const bool compressed = std::memcmp(header.Magic, CompressedMagic, sizeof(Magic)) == 0;
+  if (!compressed && std::memcmp(header.Magic, Magic, sizeof(Magic)) != 0)
   {
     error = where + "not a ProxyGI light cloud (bad magic)";
     return false;
@@ -162,6 +425,10 @@ bool ReadLightCloud(
     error = where + "version " + std::to_string(header.Version) + ", this build reads " +
       std::to_string(Version);
     return false;
+  }
+  if (compressed)
+  {
+    return ReadCompressedLightCloud(in, fileSize, header, where, cloud, info, error);
   }
   // The sizes are trusted only once the header's checksum holds, and the
   // positions must fit in the file before they are read.

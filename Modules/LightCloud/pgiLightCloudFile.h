@@ -10,6 +10,12 @@
  * else that does not add up (magic, version, header checksum, a record's
  * checksum or index, a non-finite position) is an error naming it. Native
  * byte order (little-endian on the machines we build for).
+ *
+ * A compressed cloud (zones, cluster lights, CPCA codes) has a file of its
+ * own kind (another magic): a header, the dense cloud's light positions,
+ * then one block per zone, each with its checksum. WriteLightCloud picks
+ * the kind from the cloud; ReadLightCloud reads either, and checks that
+ * every index in a compressed cloud lies inside its arrays.
  */
 #ifndef pgiLightCloudFile_h
 #define pgiLightCloudFile_h
@@ -32,7 +38,8 @@ PROXYGILIGHTCLOUD_EXPORT bool WriteLightCloudHeader(
 /// Appends the responses of `lights` (indices into the cloud) as records.
 PROXYGILIGHTCLOUD_EXPORT bool AppendLightCloudRecords(const std::string& path,
   vtkPGILightCloud* cloud, const std::vector<vtkIdType>& lights, std::string& error);
-/// The whole cloud: header and every light's record.
+/// The whole cloud: header and every light's record (dense), or the
+/// compressed file.
 PROXYGILIGHTCLOUD_EXPORT bool WriteLightCloud(
   const std::string& path, vtkPGILightCloud* cloud, std::uint64_t key, std::string& error);
 

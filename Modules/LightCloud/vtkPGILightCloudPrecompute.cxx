@@ -498,7 +498,7 @@ int vtkPGILightCloudPrecompute::RequestData(
       appendToCache = true;
     }
   }
-  if (this->LightsFromCache == lightCount)
+  if (this->LightsFromCache == lightCount && !this->Compress)
   {
     this->UpdateProgress(1.0);
     timer->StopTimer();
@@ -721,11 +721,61 @@ int vtkPGILightCloudPrecompute::RequestData(
   }
   else if (this->Compress)
   {
-    vtkNew<vtkTimerLog> compressTimer;
-    compressTimer->StartTimer();
-    this->CompressCloud(cloud, receivers, lights, tracer, response);
-    compressTimer->StopTimer();
-    this->CompressionSeconds = compressTimer->GetElapsedTime();
+    // The compressed cloud has a cache of its own beside the dense one,
+    // keyed by the dense cloud and the compression's knobs.
+    Fnv compressionKey;
+    compressionKey.AddValue(key.Value);
+    compressionKey.AddValue(this->ZoneSize);
+    compressionKey.AddValue(this->MaximumZones);
+    compressionKey.AddValue(this->MergeDistance);
+    compressionKey.AddValue(this->MergeTolerance);
+    compressionKey.AddValue(this->MergedResponse);
+    compressionKey.AddValue(this->PCAClusters);
+    compressionKey.AddValue(this->VectorsPerReceiver);
+    compressionKey.AddValue(this->PCAIterations);
+    const std::string compressedPath = cachePath.empty() ? "" : cachePath + ".compressed";
+    this->CompressedFromCache = false;
+    if (!compressedPath.empty() && FileExists(compressedPath))
+    {
+      vtkNew<vtkPGILightCloud> cached;
+      proxygi::LightCloudFileInfo info;
+      if (proxygi::ReadLightCloud(compressedPath, cached, info, error) &&
+        info.Key == compressionKey.Value && cached->IsCompressed() &&
+        cached->GetNumberOfReceivers() == n && cached->GetCoefficients() == coefficients)
+      {
+        cloud->SetZones(cached->GetZones());
+        this->CompressionSeconds = 0.0;
+        this->PCARelativeError = 0.0;
+        this->CompressedLights = 0.0;
+        for (const vtkPGILightCloud::Zone& zone : cloud->GetZones())
+        {
+          const std::size_t zoneLights = zone.Lights.size() / 3;
+          this->CompressedLights += static_cast<double>(zoneLights) *
+            static_cast<double>(zone.Receivers.size()) / static_cast<double>(n);
+        }
+        this->CompressedFromCache = true;
+      }
+      else
+      {
+        vtkWarningMacro(<< "The compressed cache '" << compressedPath << "' "
+                        << (error.empty() ? "holds another cloud" : error)
+                        << "; compressing again.");
+        error.clear();
+      }
+    }
+    if (!this->CompressedFromCache)
+    {
+      vtkNew<vtkTimerLog> compressTimer;
+      compressTimer->StartTimer();
+      this->CompressCloud(cloud, receivers, lights, tracer, response);
+      compressTimer->StopTimer();
+      this->CompressionSeconds = compressTimer->GetElapsedTime();
+      if (!compressedPath.empty() &&
+        !proxygi::WriteLightCloud(compressedPath, cloud, compressionKey.Value, error))
+      {
+        vtkWarningMacro(<< error << "; the compressed cloud is not cached.");
+      }
+    }
   }
   this->RayCount = static_cast<double>(tracer.GetRayCount());
   timer->StopTimer();

@@ -38,7 +38,9 @@
  * normals, lights, settings): a later run with the same key reads it
  * instead of tracing, and one that was stopped resumes from the lights
  * already there. A cache for something else is replaced; a corrupted one is
- * an error (delete it).
+ * an error (delete it). With Compress on, the compressed cloud is cached
+ * too, in CacheFileName + ".compressed" (keyed by the dense cloud and the
+ * compression's knobs): a later run reads it instead of compressing again.
  *
  * Errors: no receivers, NaN/Inf points or light positions, an empty grid,
  * a corrupted cache file.
@@ -157,6 +159,9 @@ public:
   vtkGetMacro(CompressedLights, double);
   vtkGetMacro(PCARelativeError, double);
   vtkGetMacro(CompressionSeconds, double);
+  /// Whether the last compression was read from the compressed cache (then
+  /// CompressionSeconds is 0 and PCARelativeError is not known: 0).
+  vtkGetMacro(CompressedFromCache, bool);
 
   /// The last update: lights traced, lights read from the cache, rays, seconds.
   vtkGetMacro(LightsTraced, vtkIdType);
@@ -210,6 +215,7 @@ protected:
   double VectorsPerReceiver = 8.0;
   int PCAIterations = 25;
   double CompressedLights = 0.0, PCARelativeError = 0.0, CompressionSeconds = 0.0;
+  bool CompressedFromCache = false;
   vtkIdType LightsTraced = 0, LightsFromCache = 0;
   double RayCount = 0.0, Seconds = 0.0;
 

@@ -158,23 +158,21 @@ int vtkPGILightCloudRelight::FillInputPortInformation(int port, vtkInformation* 
   return 1;
 }
 
-int vtkPGILightCloudRelight::RequestData(
-  vtkInformation*, vtkInformationVector** in, vtkInformationVector* out)
+bool vtkPGILightCloudRelight::PrepareFrame(
+  vtkPolyData* receivers, vtkPGILightCloud* cloud, Frame& frame)
 {
-  vtkPolyData* receivers = vtkPolyData::GetData(in[0]);
-  vtkPGILightCloud* cloud = vtkPGILightCloud::GetData(in[1]);
-  vtkPolyData* output = vtkPolyData::GetData(out);
+  frame = Frame();
   this->LightsOutside = this->CloudLightsUsed = 0;
   if (!receivers || !cloud)
   {
     vtkErrorMacro(<< "Needs the receivers (input 0) and a light cloud (input 1).");
-    return 0;
+    return false;
   }
   const vtkIdType lightCount = cloud->GetNumberOfLights(), n = receivers->GetNumberOfPoints();
   if (lightCount == 0 || cloud->GetNumberOfReceivers() == 0)
   {
     vtkErrorMacro(<< "The light cloud is empty (no cloud lights or no receivers).");
-    return 0;
+    return false;
   }
   if (cloud->GetNumberOfReceivers() != n ||
     cloud->GetReceiverKey() != vtkPGILightCloud::ReceiverKeyOf(receivers))
@@ -182,26 +180,26 @@ int vtkPGILightCloudRelight::RequestData(
     vtkErrorMacro(<< "The receivers are not the ones the cloud was computed for (" << n
                   << " points here, " << cloud->GetNumberOfReceivers()
                   << " in the cloud, or the same count at other positions).");
-    return 0;
+    return false;
   }
   for (std::size_t k = 0; k < this->Lights.size(); ++k)
   {
     if (!Finite3(this->Lights[k].Position) || !Finite3(this->Lights[k].Intensity))
     {
       vtkErrorMacro(<< "User light " << k << " has a NaN or Inf position or intensity.");
-      return 0;
+      return false;
     }
   }
   if (this->ViewPointSet && !Finite3(this->ViewPoint))
   {
     vtkErrorMacro(<< "The view point is NaN or Inf.");
-    return 0;
+    return false;
   }
   std::string error;
   if (this->Occluder && !this->Occluder->Prepare(error))
   {
     vtkErrorMacro(<< "The occluder cannot trace: " << error);
-    return 0;
+    return false;
   }
 
   // A new cloud or another number of lights: the fade starts afresh.
@@ -278,12 +276,12 @@ int vtkPGILightCloudRelight::RequestData(
 
   // What each receiver gets: RGB, or RGB per SH coefficient (glossy).
   const int stride = cloud->GetValuesPerReceiver();
-  vtkNew<vtkFloatArray> radiance;
-  radiance->SetName(stride > 3 ? "LightCloudRadianceSH" : "LightCloudRadiance");
-  radiance->SetNumberOfComponents(stride);
-  radiance->SetNumberOfTuples(n);
-  radiance->Fill(0.0);
-  float* values = radiance->GetPointer(0);
+  frame.Stride = stride;
+  frame.Compressed = cloud->IsCompressed();
+  if (frame.Compressed)
+  {
+    frame.ZoneVectors.resize(this->Locators.size());
+  }
   std::vector<char> visibleAny(this->Lights.size(), 0);
   this->NextFade.assign(this->Lights.size(), {});
   for (std::size_t set = 0; set < this->Locators.size(); ++set)
@@ -315,35 +313,24 @@ int vtkPGILightCloudRelight::RequestData(
     {
       continue;
     }
-    if (!cloud->IsCompressed())
+    if (!frame.Compressed)
     {
-      // Dense: a = sum_j w_j X_j, per receiver.
-      vtkSMPTools::For(0, n,
-        [&](vtkIdType first, vtkIdType last)
-        {
-          for (vtkIdType i = first; i < last; ++i)
-          {
-            float* o = values + static_cast<std::ptrdiff_t>(stride) * i;
-            for (const auto& [j, w] : weights)
-            {
-              const float* x = cloud->GetResponse(j) + static_cast<std::ptrdiff_t>(stride) * i;
-              for (int c = 0; c < stride; ++c)
-              {
-                o[c] += static_cast<float>(w[c % 3] * x[c]);
-              }
-            }
-          }
-        });
+      for (const auto& [j, w] : weights)
+      {
+        frame.DenseLights.push_back(j);
+        frame.DenseWeights.insert(frame.DenseWeights.end(), w.begin(), w.end());
+      }
       continue;
     }
-    // Compressed: per PCA cluster x_m = Xbar w_t and b_i = B_i w_t, then
-    // per receiver a = x_m + sum_i z_i b_i.
+    // Compressed: per PCA cluster x_m = Xbar w_t and b_i = B_i w_t.
     const vtkPGILightCloud::Zone& zone = cloud->GetZones()[set];
     const int clusters = static_cast<int>(zone.BasisCount.size());
     const int dim = zone.Dimension;
+    const std::size_t vectors = zone.Basis.size() / std::max(1, dim);
+    std::vector<double>& out = frame.ZoneVectors[set];
+    out.assign((clusters + vectors) * stride, 0.0);
     auto project = [&](const float* v, double* result)
     {
-      std::fill_n(result, stride, 0.0);
       for (const auto& [j, w] : weights)
       {
         for (int c = 0; c < stride; ++c)
@@ -352,37 +339,14 @@ int vtkPGILightCloudRelight::RequestData(
         }
       }
     };
-    std::vector<double> xm(static_cast<std::size_t>(stride) * clusters);
-    std::vector<double> bi(zone.Basis.size() / std::max(1, dim) * stride);
     for (int q = 0; q < clusters; ++q)
     {
-      project(&zone.Means[static_cast<std::size_t>(q) * dim], &xm[stride * q]);
-      for (int v = 0; v < zone.BasisCount[q]; ++v)
-      {
-        const int vector = zone.BasisStart[q] + v;
-        project(&zone.Basis[static_cast<std::size_t>(vector) * dim], &bi[stride * vector]);
-      }
+      project(&zone.Means[static_cast<std::size_t>(q) * dim], &out[stride * q]);
     }
-    const vtkIdType zoneReceivers = static_cast<vtkIdType>(zone.Receivers.size());
-    vtkSMPTools::For(0, zoneReceivers,
-      [&](vtkIdType first, vtkIdType last)
-      {
-        for (vtkIdType r = first; r < last; ++r)
-        {
-          const int q = zone.Cluster[r];
-          const float* z = &zone.Weights[zone.WeightStart[r]];
-          float* o = values + static_cast<std::ptrdiff_t>(stride) * zone.Receivers[r];
-          for (int c = 0; c < stride; ++c)
-          {
-            double a = xm[static_cast<std::size_t>(stride) * q + c];
-            for (int v = 0; v < zone.BasisCount[q]; ++v)
-            {
-              a += z[v] * bi[static_cast<std::size_t>(stride) * (zone.BasisStart[q] + v) + c];
-            }
-            o[c] = static_cast<float>(a);
-          }
-        }
-      });
+    for (std::size_t v = 0; v < vectors; ++v)
+    {
+      project(&zone.Basis[v * dim], &out[stride * (clusters + v)]);
+    }
   }
   // Lights that left every kernel are forgotten.
   this->Fade.swap(this->NextFade);
@@ -394,7 +358,7 @@ int vtkPGILightCloudRelight::RequestData(
     }
   }
   // The plan: what ran and why.
-  std::vector<std::string> plan;
+  std::vector<std::string>& plan = frame.Plan;
   {
     std::ostringstream line;
     line << "light cloud: " << lightCount << " cloud lights, "
@@ -441,9 +405,87 @@ int vtkPGILightCloudRelight::RequestData(
       plan.push_back("user light " + std::to_string(k) + ": no cloud light near it visible");
     }
   }
+  return true;
+}
+
+int vtkPGILightCloudRelight::RequestData(
+  vtkInformation*, vtkInformationVector** in, vtkInformationVector* out)
+{
+  vtkPolyData* receivers = vtkPolyData::GetData(in[0]);
+  vtkPGILightCloud* cloud = vtkPGILightCloud::GetData(in[1]);
+  vtkPolyData* output = vtkPolyData::GetData(out);
+  Frame frame;
+  if (!this->PrepareFrame(receivers, cloud, frame))
+  {
+    return 0;
+  }
+  const vtkIdType n = receivers->GetNumberOfPoints();
+  const int stride = frame.Stride;
+  std::string error;
+  vtkNew<vtkFloatArray> radiance;
+  radiance->SetName(stride > 3 ? "LightCloudRadianceSH" : "LightCloudRadiance");
+  radiance->SetNumberOfComponents(stride);
+  radiance->SetNumberOfTuples(n);
+  radiance->Fill(0.0);
+  float* values = radiance->GetPointer(0);
+  if (!frame.Compressed && !frame.DenseLights.empty())
+  {
+    // Dense: a = sum_j w_j X_j, per receiver.
+    vtkSMPTools::For(0, n,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType i = first; i < last; ++i)
+        {
+          float* o = values + static_cast<std::ptrdiff_t>(stride) * i;
+          for (std::size_t q = 0; q < frame.DenseLights.size(); ++q)
+          {
+            const double* w = &frame.DenseWeights[3 * q];
+            const float* x =
+              cloud->GetResponse(frame.DenseLights[q]) + static_cast<std::ptrdiff_t>(stride) * i;
+            for (int c = 0; c < stride; ++c)
+            {
+              o[c] += static_cast<float>(w[c % 3] * x[c]);
+            }
+          }
+        }
+      });
+  }
+  for (std::size_t set = 0; set < frame.ZoneVectors.size(); ++set)
+  {
+    // Per receiver a = x_m + sum_i z_i b_i (the GPU mapper's twin).
+    const std::vector<double>& vectors = frame.ZoneVectors[set];
+    if (vectors.empty())
+    {
+      continue;
+    }
+    const vtkPGILightCloud::Zone& zone = cloud->GetZones()[set];
+    const std::size_t clusters = zone.BasisCount.size();
+    const vtkIdType zoneReceivers = static_cast<vtkIdType>(zone.Receivers.size());
+    vtkSMPTools::For(0, zoneReceivers,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType r = first; r < last; ++r)
+        {
+          const int q = zone.Cluster[r];
+          const float* z = &zone.Weights[zone.WeightStart[r]];
+          const double* xm = &vectors[static_cast<std::size_t>(stride) * q];
+          const double* bi = &vectors[stride * (clusters + zone.BasisStart[q])];
+          float* o = values + static_cast<std::ptrdiff_t>(stride) * zone.Receivers[r];
+          for (int c = 0; c < stride; ++c)
+          {
+            double a = xm[c];
+            for (int v = 0; v < zone.BasisCount[q]; ++v)
+            {
+              a += z[v] * bi[static_cast<std::size_t>(stride) * v + c];
+            }
+            o[c] = static_cast<float>(a);
+          }
+        }
+      });
+  }
   vtkNew<vtkStringArray> planArray;
   planArray->SetName("Plan");
-  for (const std::string& line : plan)
+  for (const std::string& line : frame.Plan)
   {
     planArray->InsertNextValue(line);
   }

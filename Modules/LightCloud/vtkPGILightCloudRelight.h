@@ -59,6 +59,7 @@
 #include "vtkStaticPointLocator.h" // for the locators
 
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -78,6 +79,16 @@ public:
   void SetLightIntensity(int index, double r, double g, double b);
   void RemoveAllLights();
   int GetNumberOfLights() const { return static_cast<int>(this->Lights.size()); }
+  /// User light `index`'s position and intensity (null for no such light).
+  const double* GetLightPosition(int index) const
+  {
+    return index >= 0 && index < this->GetNumberOfLights() ? this->Lights[index].Position : nullptr;
+  }
+  const double* GetLightIntensity(int index) const
+  {
+    return index >= 0 && index < this->GetNumberOfLights() ? this->Lights[index].Intensity
+                                                           : nullptr;
+  }
 
   /// Where glossy receivers are seen from (a camera position).
   void SetViewPoint(double x, double y, double z);
@@ -114,6 +125,33 @@ public:
   void SetCloudData(vtkDataObject* cloud) { this->SetInputData(1, cloud); }
 
   vtkMTimeType GetMTime() override;
+
+#ifndef __VTK_WRAP__
+  /**
+   * One frame's light, before the per-receiver sums: what this filter and
+   * the GPU mapper (vtkPGILightCloudPolyDataMapper) share. Dense cloud: the
+   * cloud lights weighed and their RGB weights w_t (summed over the user
+   * lights). Compressed: per zone (empty where no cloud light of it is
+   * weighed), x_m = Xbar w_t for each PCA cluster, then b_i = B_i w_t for
+   * each basis vector, Stride values each; a receiver's light is then
+   * x_m + sum_i z_i b_i.
+   */
+  struct Frame
+  {
+    int Stride = 0; // values per receiver (vtkPGILightCloud::GetValuesPerReceiver)
+    bool Compressed = false;
+    std::vector<vtkIdType> DenseLights;
+    std::vector<double> DenseWeights; // RGB per entry of DenseLights
+    std::vector<std::vector<double>> ZoneVectors;
+    std::vector<std::string> Plan; // what ran and why, one line each
+  };
+  /**
+   * Checks the receivers and cloud (vtkErrorMacro and false when bad),
+   * weighs the cloud lights for the user lights (visibility, fade) and fills
+   * `frame`. Advances the fade: call it once per frame.
+   */
+  bool PrepareFrame(vtkPolyData* receivers, vtkPGILightCloud* cloud, Frame& frame);
+#endif
 
 protected:
   vtkPGILightCloudRelight();

@@ -303,6 +303,7 @@ const vtkPGIGISettings::Support& vtkPGIImageSpaceGIPass::GetSupport()
     s.PlaneBounceShadows = false;
     s.PlaneBlockings = 1u << vtkPGIGISettings::PLANES_IN_LOG_SPACE;
     s.LocalLights = false;
+    s.LightCloud = false;
     s.ReceiverAlbedo = false;
     return s;
   }();

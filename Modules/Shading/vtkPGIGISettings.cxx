@@ -98,6 +98,7 @@ void vtkPGIGISettings::DeepCopy(vtkPGIGISettings* o)
   this->SetPlaneBounceShadows(o->PlaneBounceShadows);
   this->SetPlaneBlocking(o->PlaneBlocking);
   this->SetLocalLights(o->LocalLights);
+  this->SetLightCloud(o->LightCloud);
   this->SetBrightLights(o->BrightLights);
   this->SetBrightLightFraction(o->BrightLightFraction);
   this->SetBrightLightCount(o->BrightLightCount);
@@ -258,6 +259,17 @@ bool vtkPGIGISettings::Resolve(const Support& s, int planes, vtkPGIGISettings* e
     }
     e->SetLocalLights(false);
   }
+  if (!s.LightCloud)
+  {
+    // Not read here: noted only when set away from its default.
+    if (!this->LightCloud)
+    {
+      note("LightCloud",
+        "this backend has no light cloud (vtkPGILightCloudPolyDataMapper relights "
+        "one on the GPU)");
+    }
+    e->SetLightCloud(true);
+  }
   if (!s.BrightLights)
   {
     // On by default: the backend keeps the whole map in the SH, and its
@@ -308,6 +320,7 @@ void vtkPGIGISettings::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PlaneBounceShadows: " << this->PlaneBounceShadows << "\n";
   os << indent << "PlaneBlocking: " << PlaneBlockingName(this->PlaneBlocking) << "\n";
   os << indent << "LocalLights: " << this->LocalLights << "\n";
+  os << indent << "LightCloud: " << this->LightCloud << "\n";
   os << indent << "BrightLights: " << this->BrightLights << " (fraction "
      << this->BrightLightFraction << ", at most " << this->BrightLightCount << ", "
      << this->BrightLightRays << " rays)\n";

@@ -35,13 +35,14 @@
  * | PlaneBounceShadows | on | planes reflect less where the proxies shadow them |
  * | PlaneBlocking | PLANES_IN_LIGHT | planes as steps in the light, or caps in log space |
  * | LocalLights | on | the lighting's spherical and point lights |
+ * | LightCloud | on | point lights' indirect light from a light cloud (SetLocalLightTransfer) |
  * | BrightLights | on | the map's compact peaks (a sun) as distant lights; CPU filter |
  * | BrightLightFraction | 0.05 | a peak holding less of the map's power stays in the SH |
  * | BrightLightCount | 4 | at most this many peaks are taken out |
- * | BrightLightRays | 16 | directions per light and receiver over its disk (with an occluder, its
- * rays) | | DefaultAlbedo | 0.8 0.8 0.8 | receivers' albedo without an AlbedoArrayName array | |
- * DefaultProxyAlbedo | 0.8 0.8 0.8 | proxies' albedo without an AlbedoArrayName array | |
- * AlbedoArrayName | "Albedo" | per-point albedo of receivers and proxies (0..1 or bytes) |
+ * | BrightLightRays | 16 | directions per light and receiver over its disk (or occluder rays) |
+ * | DefaultAlbedo | 0.8 0.8 0.8 | receivers' albedo without an AlbedoArrayName array |
+ * | DefaultProxyAlbedo | 0.8 0.8 0.8 | proxies' albedo without an AlbedoArrayName array |
+ * | AlbedoArrayName | "Albedo" | per-point albedo of receivers and proxies (0..1 or bytes) |
  */
 #ifndef vtkPGIGISettings_h
 #define vtkPGIGISettings_h
@@ -143,6 +144,11 @@ public:
   vtkSetMacro(LocalLights, bool);
   vtkGetMacro(LocalLights, bool);
   vtkBooleanMacro(LocalLights, bool);
+  /// The point lights' indirect light from a light cloud (a
+  /// vtkPGILocalLightTransfer given to the consumer; none: skipped).
+  vtkSetMacro(LightCloud, bool);
+  vtkGetMacro(LightCloud, bool);
+  vtkBooleanMacro(LightCloud, bool);
   /// Bright lights out of the map (pgiBrightLights.h): each gets its own
   /// sharp shadow (rays against the meshes through the filter's occluder,
   /// else the proxies' cones), the SH carries the rest.
@@ -200,6 +206,7 @@ public:
     bool PlaneBounceShadows = true;
     unsigned PlaneBlockings = 0x3;
     bool LocalLights = true;
+    bool LightCloud = true;     // a vtkPGILocalLightTransfer for the point lights
     bool BrightLights = true;   // BrightLights and its three knobs
     bool SelfVisibility = true; // receivers' SelfLogVisibility arrays
     bool ReceiverAlbedo = true; // DefaultAlbedo and AlbedoArrayName on receivers
@@ -244,6 +251,7 @@ protected:
   bool PlaneBounceShadows = true;
   int PlaneBlocking = PLANES_IN_LIGHT;
   bool LocalLights = true;
+  bool LightCloud = true;
   bool BrightLights = true;
   double BrightLightFraction = 0.05;
   int BrightLightCount = 4;

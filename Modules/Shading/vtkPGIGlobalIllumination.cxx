@@ -1,4 +1,5 @@
 #include "vtkPGIGlobalIllumination.h"
+#include "vtkPGILocalLightTransfer.h"
 
 #include "pgiBrightLightShadows.h"
 #include "pgiEnvironmentMap.h"
@@ -120,6 +121,7 @@ void UnitNormal(vtkDataArray* normals, vtkIdType i, double n[3])
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Lighting, vtkPGILighting);
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Controller, vtkMultiProcessController);
 vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, Occluder, vtkPGIOccluder);
+vtkCxxSetObjectMacro(vtkPGIGlobalIllumination, LocalLightTransfer, vtkPGILocalLightTransfer);
 
 namespace
 {
@@ -423,6 +425,7 @@ vtkPGIGlobalIllumination::~vtkPGIGlobalIllumination()
 {
   this->SetLighting(nullptr);
   this->SetOccluder(nullptr);
+  this->SetLocalLightTransfer(nullptr);
   this->SetController(nullptr);
   this->Settings->UnRegister(this);
 }
@@ -457,6 +460,10 @@ vtkMTimeType vtkPGIGlobalIllumination::GetMTime()
   {
     t = std::max(t, this->Occluder->GetMTime());
   }
+  if (this->LocalLightTransfer)
+  {
+    t = std::max(t, this->LocalLightTransfer->GetMTime());
+  }
   return std::max(t, this->Bake->vtkObject::GetMTime());
 }
 
@@ -486,11 +493,73 @@ void vtkPGIGlobalIllumination::RemoveAllBlockerPlanes()
   this->Modified();
 }
 
+void vtkPGIGlobalIllumination::AddTransferredLight(
+  vtkPolyData* receivers, vtkFloatArray* cloud, vtkFloatArray* total)
+{
+  cloud->FillValue(0.0f);
+  const std::vector<vtkPGILighting::PointLight> none;
+  const auto& points = this->Lighting ? this->Lighting->GetPointLights() : none;
+  if (!this->Effective->GetLightCloud())
+  {
+    this->Plan.push_back("light cloud: off (switched off)");
+    return;
+  }
+  if (points.empty())
+  {
+    this->Plan.push_back(this->LocalLightTransfer
+        ? "light cloud: skipped (no point lights in the lighting)"
+        : "light cloud: skipped (no point lights, no cloud)");
+    return;
+  }
+  if (!this->LocalLightTransfer)
+  {
+    this->Plan.push_back("light cloud: skipped (no cloud given: the " +
+      std::to_string(points.size()) + " point lights' indirect light is not drawn)");
+    return;
+  }
+  if (this->LocalLightTransfer->CarriesDirectLight())
+  {
+    vtkWarningMacro(<< "The light cloud carries direct light too, which LocalLights already "
+                       "draws with soft shadows: precompute it with IncludeDirect off.");
+    this->Plan.push_back("light cloud: skipped (it carries direct light too, which the local "
+                         "lights' soft shadows draw; precompute it with IncludeDirect off)");
+    return;
+  }
+  std::vector<vtkPGILocalLightTransfer::Light> lights;
+  for (const auto& p : points)
+  {
+    vtkPGILocalLightTransfer::Light l;
+    std::copy_n(p.Position, 3, l.Position);
+    std::copy_n(p.Intensity, 3, l.Intensity);
+    lights.push_back(l);
+  }
+  std::string why;
+  std::vector<std::string> lines;
+  if (!this->LocalLightTransfer->AddLight(receivers, lights, cloud->GetPointer(0), lines, why))
+  {
+    vtkErrorMacro(<< "The light cloud cannot light these receivers: " << why);
+    cloud->FillValue(0.0f);
+    this->Plan.push_back("light cloud: failed (" + why + ")");
+    return;
+  }
+  float* all = total->GetPointer(0);
+  const float* add = cloud->GetPointer(0);
+  for (vtkIdType k = 0; k < cloud->GetNumberOfValues(); ++k)
+  {
+    all[k] += add[k];
+  }
+  for (const std::string& line : lines)
+  {
+    this->Plan.push_back(line);
+  }
+}
+
 void vtkPGIGlobalIllumination::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Lighting: " << this->Lighting << "\n";
   os << indent << "Occluder: " << this->Occluder << "\n";
+  os << indent << "LocalLightTransfer: " << this->LocalLightTransfer << "\n";
   os << indent << "Settings:\n";
   this->Settings->PrintSelf(os, indent.GetNextIndent());
   os << indent << "BlockerPlanes: " << this->Bake->GetNumberOfBlockerPlanes() << "\n";
@@ -1321,7 +1390,11 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
     this->Plan.push_back(line.str());
   }
 
+  vtkFloatArray* transferred = reuse(this->OutputArrays[7], "IndirectLocal", 3);
+  this->AddTransferredLight(receivers, transferred, total);
+
   output->ShallowCopy(receivers);
+  output->GetPointData()->AddArray(transferred);
   output->GetPointData()->AddArray(direct);
   output->GetPointData()->AddArray(indirect);
   output->GetPointData()->AddArray(indirectShadowed);

@@ -19,6 +19,9 @@
  *    traced mesh (receivers with a self-visibility, below; else 0);
  *  - LocalLights: spherical and point lights of the vtkPGILighting, shadowed
  *    by the same visibility;
+ *  - IndirectLocal: the point lights' indirect light from a light cloud
+ *    (SetLocalLightTransfer, e.g. vtkPGILightCloudTransfer; settings
+ *    LightCloud), 0 without one;
  *  - Radiance: the sum of the effects that ran;
  *  - Visibility (n^2): the SH visibility vector (relight without recomputing);
  *  - RadianceSRGB (3 bytes): ColorExposure x Radiance encoded sRGB, the
@@ -112,6 +115,7 @@ class vtkFloatArray;
 class vtkUnsignedCharArray;
 class vtkMultiProcessController;
 class vtkPGILighting;
+class vtkPGILocalLightTransfer;
 class vtkPGIOccluder;
 
 class PROXYGISHADING_EXPORT vtkPGIGlobalIllumination : public vtkPolyDataAlgorithm
@@ -149,6 +153,12 @@ public:
   virtual void SetOccluder(vtkPGIOccluder* occluder);
   vtkGetObjectMacro(Occluder, vtkPGIOccluder);
 
+  /// The point lights' indirect light through precomputed transfer (a light
+  /// cloud: vtkPGILightCloudTransfer), run while the settings' LightCloud is
+  /// on and the lighting has point lights; null: none.
+  virtual void SetLocalLightTransfer(vtkPGILocalLightTransfer* transfer);
+  vtkGetObjectMacro(LocalLightTransfer, vtkPGILocalLightTransfer);
+
   /// Scale of the radiance in the RadianceSRGB colours (default 1).
   vtkSetClampMacro(ColorExposure, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(ColorExposure, double);
@@ -181,6 +191,7 @@ protected:
 
   vtkPGILighting* Lighting = nullptr;
   vtkPGIOccluder* Occluder = nullptr;
+  vtkPGILocalLightTransfer* LocalLightTransfer = nullptr;
   vtkPGIGISettings* Settings = nullptr;
   vtkNew<vtkPGIGISettings> Effective;
   vtkNew<vtkPGIGIBake> Bake;
@@ -197,7 +208,9 @@ protected:
   // summed over threads), and the precompute's build count then.
   double StageMs[6] = {};
   // The output arrays, reused by the next update when nobody else holds them.
-  vtkSmartPointer<vtkFloatArray> OutputArrays[7];
+  vtkSmartPointer<vtkFloatArray> OutputArrays[8];
+  // The light cloud's part of the output (ShadeReceivers).
+  void AddTransferredLight(vtkPolyData* receivers, vtkFloatArray* cloud, vtkFloatArray* total);
   vtkSmartPointer<vtkUnsignedCharArray> ColorArray;
   int BuildsSeen = -1;
 

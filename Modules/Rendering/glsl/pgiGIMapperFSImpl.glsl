@@ -1,6 +1,6 @@
   {
     // ProxyGI: GI replaces VTK's lighting, or adds to it as ambient light.
-    vec3 pgiGI = pgiExposure * pgiRadianceVSOutput;
+    vec3 pgiGI = pgiExposure * (pgiRadianceVSOutput + PGI_EXTRA_RADIANCE);
     if (pgiSRGBOutput != 0)
     {
       pgiGI = pgiEncodeSRGB(pgiGI);

@@ -12,17 +12,16 @@
 //  - a glossy cloud survives the file and the compression;
 //  - bad input: a glossy cloud without a view point uses the normals; a
 //    NaN view point is an error.
+#include "pgiCornellBox.h"
 #include "pgiLightCloudFile.h"
 #include "pgiLightCloudGlossy.h"
 #include "pgiSHBasis.h"
-#include "pgiScene.h"
 #include "pgiTesting.h"
 #include "pgiTestingErrors.h"
 #include "vtkPGILightCloud.h"
 #include "vtkPGILightCloudPrecompute.h"
 #include "vtkPGILightCloudRelight.h"
 
-#include "vtkAppendPolyData.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkMath.h"
@@ -264,23 +263,12 @@ int TestLightCloudGlossy(int, char*[])
   }
 
   // 4. A vanishing lobe: the diffuse cloud's light (Cornell box, indirect).
-  proxygi::SceneDescription description;
-  proxygi::LoadedScene scene;
-  std::string error;
-  if (!PGI_CHECK(
-        proxygi::LoadScene(PROXYGI_TEST_DATA_DIR "/cornell-box.json", description, error) &&
-        proxygi::BuildScene(description, scene, error)))
+  vtkSmartPointer<vtkPolyData> box =
+    pgitest::LoadCornellBox(PROXYGI_TEST_DATA_DIR "/cornell-box.json");
+  if (!PGI_CHECK(box))
   {
-    std::printf("%s\n", error.c_str());
     return pgitest::Result();
   }
-  vtkNew<vtkAppendPolyData> append;
-  for (auto& object : scene.Objects)
-  {
-    append->AddInputData(object);
-  }
-  append->Update();
-  vtkPolyData* box = append->GetOutput();
   const double inside[6] = { -1.0, 1.0, -1.0, 1.0, 0.0, 2.0 };
   auto diffuse = Precompute(box, nullptr, 3, 0.0, false, inside);
   auto faint = Precompute(box, nullptr, 3, 1e-6, false, inside);
@@ -316,6 +304,7 @@ int TestLightCloudGlossy(int, char*[])
   // 5. The file and the compression.
   {
     const std::string path = "light-cloud-glossy.pgilc";
+    std::string error;
     PGI_CHECK(proxygi::WriteLightCloud(path, grid, 7, error));
     vtkNew<vtkPGILightCloud> read;
     proxygi::LightCloudFileInfo info;

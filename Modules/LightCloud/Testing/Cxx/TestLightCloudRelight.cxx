@@ -9,7 +9,7 @@
 //    without the visibility test it would leak, so the test can fail);
 //  - bad input: a light outside the cloud (a warning, nothing added), an
 //    empty cloud, NaN positions, receivers the cloud is not for.
-#include "pgiScene.h"
+#include "pgiCornellBox.h"
 #include "pgiTesting.h"
 #include "pgiTestingErrors.h"
 #include "vtkPGILightCloud.h"
@@ -108,25 +108,13 @@ double MaxAbs(vtkFloatArray* a)
 
 int TestLightCloudRelight(int, char*[])
 {
-  proxygi::SceneDescription description;
-  proxygi::LoadedScene scene;
-  std::string error;
-  if (!PGI_CHECK(
-        proxygi::LoadScene(PROXYGI_TEST_DATA_DIR "/cornell-box.json", description, error) &&
-        proxygi::BuildScene(description, scene, error)))
+  vtkNew<vtkPGIMeshOccluder> occluder;
+  vtkSmartPointer<vtkPolyData> box =
+    pgitest::LoadCornellBox(PROXYGI_TEST_DATA_DIR "/cornell-box.json", occluder);
+  if (!PGI_CHECK(box))
   {
-    std::printf("%s\n", error.c_str());
     return pgitest::Result();
   }
-  vtkNew<vtkAppendPolyData> append;
-  vtkNew<vtkPGIMeshOccluder> occluder;
-  for (auto& object : scene.Objects)
-  {
-    append->AddInputData(object);
-    occluder->AddMesh(object);
-  }
-  append->Update();
-  vtkPolyData* box = append->GetOutput();
   std::printf("Cornell box: %lld receivers\n", static_cast<long long>(box->GetNumberOfPoints()));
 
   // Clouds of 3^3 and 5^3 lights over the box's inside.
