@@ -26,3 +26,11 @@ if [ -x "$build/bin/ProxyGISweepGI" ]; then
   python3 "$here/Utilities/bench_report.py" --section gi-sweep \
     "$here/Documentation/figures/gi-sweep.md" "$here/Documentation/AccuracyTime.md"
 fi
+
+# Light-cloud relighting per frame, CPU filter against the GPU mapper
+# (AccuracyTime section 18 quotes the table).
+if [ -x "$build/bin/ProxyGIBenchLightCloudMapper" ]; then
+  mkdir -p "$here/Documentation/figures"
+  env -u DISPLAY "$build/bin/ProxyGIBenchLightCloudMapper" \
+    --out "$here/Documentation/figures/lightcloud-frame-time.md"
+fi

@@ -58,6 +58,28 @@ bool WriteRecord(std::ofstream& out, vtkPGILightCloud* cloud, vtkIdType light)
   out.write(reinterpret_cast<const char*>(&h.Value), sizeof(h.Value));
   return static_cast<bool>(out);
 }
+
+// Both kinds' header and the cloud lights' positions (the dense cloud's).
+Header HeaderOf(
+  const char magic[8], vtkPGILightCloud* cloud, std::uint64_t key, std::vector<double>& positions)
+{
+  Header header;
+  std::memcpy(header.Magic, magic, sizeof(header.Magic));
+  header.Version = Version;
+  header.Contents = static_cast<std::uint32_t>(cloud->GetContents());
+  header.Samples = cloud->GetSamples();
+  header.Coefficients = static_cast<std::uint32_t>(cloud->GetCoefficients());
+  header.Key = key;
+  header.ReceiverKey = cloud->GetReceiverKey();
+  header.Receivers = static_cast<std::uint64_t>(cloud->GetNumberOfReceivers());
+  header.Lights = static_cast<std::uint64_t>(cloud->GetNumberOfLights());
+  positions.resize(3 * header.Lights);
+  for (vtkIdType j = 0; j < cloud->GetNumberOfLights(); ++j)
+  {
+    cloud->GetLightPositions()->GetPoint(j, &positions[3 * j]);
+  }
+  return header;
+}
 } // namespace
 
 bool WriteLightCloudHeader(
@@ -74,21 +96,8 @@ bool WriteLightCloudHeader(
     error = "cannot write the light cloud file '" + path + "'";
     return false;
   }
-  Header header;
-  std::memcpy(header.Magic, Magic, sizeof(Magic));
-  header.Version = Version;
-  header.Contents = static_cast<std::uint32_t>(cloud->GetContents());
-  header.Samples = cloud->GetSamples();
-  header.Coefficients = static_cast<std::uint32_t>(cloud->GetCoefficients());
-  header.Key = key;
-  header.ReceiverKey = cloud->GetReceiverKey();
-  header.Receivers = static_cast<std::uint64_t>(cloud->GetNumberOfReceivers());
-  header.Lights = static_cast<std::uint64_t>(cloud->GetNumberOfLights());
-  std::vector<double> positions(3 * header.Lights);
-  for (vtkIdType j = 0; j < cloud->GetNumberOfLights(); ++j)
-  {
-    cloud->GetLightPositions()->GetPoint(j, &positions[3 * j]);
-  }
+  std::vector<double> positions;
+  const Header header = HeaderOf(Magic, cloud, key, positions);
   Hash h;
   h.Add(&header, sizeof(header));
   h.Add(positions.data(), positions.size() * sizeof(double));
@@ -228,21 +237,8 @@ bool WriteCompressedLightCloud(
     error = "cannot write the light cloud file '" + path + "'";
     return false;
   }
-  Header header;
-  std::memcpy(header.Magic, CompressedMagic, sizeof(CompressedMagic));
-  header.Version = Version;
-  header.Contents = static_cast<std::uint32_t>(cloud->GetContents());
-  header.Samples = cloud->GetSamples();
-  header.Coefficients = static_cast<std::uint32_t>(cloud->GetCoefficients());
-  header.Key = key;
-  header.ReceiverKey = cloud->GetReceiverKey();
-  header.Receivers = static_cast<std::uint64_t>(cloud->GetNumberOfReceivers());
-  header.Lights = static_cast<std::uint64_t>(cloud->GetNumberOfLights());
-  std::vector<double> positions(3 * header.Lights);
-  for (vtkIdType j = 0; j < cloud->GetNumberOfLights(); ++j)
-  {
-    cloud->GetLightPositions()->GetPoint(j, &positions[3 * j]);
-  }
+  std::vector<double> positions;
+  const Header header = HeaderOf(CompressedMagic, cloud, key, positions);
   const std::uint64_t zones = cloud->GetZones().size();
   Hash h;
   h.Add(&header, sizeof(header));
@@ -273,25 +269,36 @@ bool WriteCompressedLightCloud(
   return true;
 }
 
-bool ReadCompressedLightCloud(std::ifstream& in, std::uint64_t fileSize, const Header& header,
-  const std::string& where, vtkPGILightCloud* cloud, LightCloudFileInfo& info, std::string& error)
+// After the header: the positions (and, compressed, the zone count), the
+// header's checksum, the sizes both kinds share, finite positions.
+bool ReadHeaderRest(std::ifstream& in, std::uint64_t fileSize, const Header& header,
+  const std::string& where, std::uint64_t* zones, std::vector<double>& positions,
+  std::string& error)
 {
+  // The sizes are trusted only once the header's checksum holds, and the
+  // positions must fit in the file before they are read.
   const std::uint64_t rest = fileSize - sizeof(Header);
   if (header.Lights > rest / 24)
   {
     error = where + "corrupted header (more lights than the file holds)";
     return false;
   }
-  std::vector<double> positions(3 * header.Lights);
-  std::uint64_t zones = 0, stored = 0;
+  positions.resize(3 * header.Lights);
+  std::uint64_t stored = 0;
   in.read(reinterpret_cast<char*>(positions.data()),
     static_cast<std::streamsize>(positions.size() * sizeof(double)));
-  in.read(reinterpret_cast<char*>(&zones), sizeof(zones));
+  if (zones)
+  {
+    in.read(reinterpret_cast<char*>(zones), sizeof(*zones));
+  }
   in.read(reinterpret_cast<char*>(&stored), sizeof(stored));
   Hash h;
   h.Add(&header, sizeof(header));
   h.Add(positions.data(), positions.size() * sizeof(double));
-  h.Add(&zones, sizeof(zones));
+  if (zones)
+  {
+    h.Add(zones, sizeof(*zones));
+  }
   if (!in || stored != h.Value)
   {
     error = where + "corrupted header (checksum mismatch)";
@@ -300,7 +307,7 @@ bool ReadCompressedLightCloud(std::ifstream& in, std::uint64_t fileSize, const H
   const std::uint64_t coefficients = std::max<std::uint32_t>(1, header.Coefficients);
   const std::uint64_t order = static_cast<std::uint64_t>(std::lround(std::sqrt(coefficients)));
   if (header.Contents > 1 || header.Receivers > (1ull << 32) || order * order != coefficients ||
-    order > 8 || zones > header.Receivers || zones > (1ull << 20))
+    order > 8)
   {
     error = where + "header sizes out of range";
     return false;
@@ -312,6 +319,24 @@ bool ReadCompressedLightCloud(std::ifstream& in, std::uint64_t fileSize, const H
       error = where + "a cloud light position is NaN or infinite";
       return false;
     }
+  }
+  return true;
+}
+
+bool ReadCompressedLightCloud(std::ifstream& in, std::uint64_t fileSize, const Header& header,
+  const std::string& where, vtkPGILightCloud* cloud, LightCloudFileInfo& info, std::string& error)
+{
+  std::vector<double> positions;
+  std::uint64_t zones = 0;
+  if (!ReadHeaderRest(in, fileSize, header, where, &zones, positions, error))
+  {
+    return false;
+  }
+  const std::uint64_t coefficients = std::max<std::uint32_t>(1, header.Coefficients);
+  if (zones > header.Receivers || zones > (1ull << 20))
+  {
+    error = where + "header sizes out of range";
+    return false;
   }
   std::vector<vtkPGILightCloud::Zone> read(static_cast<std::size_t>(zones));
   const int values = static_cast<int>(3 * coefficients);
@@ -430,42 +455,16 @@ bool ReadLightCloud(
   {
     return ReadCompressedLightCloud(in, fileSize, header, where, cloud, info, error);
   }
-  // The sizes are trusted only once the header's checksum holds, and the
-  // positions must fit in the file before they are read.
-  const std::uint64_t rest = fileSize - sizeof(Header);
-  if (header.Lights > rest / 24)
+  std::vector<double> positions;
+  if (!ReadHeaderRest(in, fileSize, header, where, nullptr, positions, error))
   {
-    error = where + "corrupted header (more lights than the file holds)";
-    return false;
-  }
-  std::vector<double> positions(3 * header.Lights);
-  std::uint64_t stored = 0;
-  in.read(reinterpret_cast<char*>(positions.data()),
-    static_cast<std::streamsize>(positions.size() * sizeof(double)));
-  in.read(reinterpret_cast<char*>(&stored), sizeof(stored));
-  Hash h;
-  h.Add(&header, sizeof(header));
-  h.Add(positions.data(), positions.size() * sizeof(double));
-  if (!in || stored != h.Value)
-  {
-    error = where + "corrupted header (checksum mismatch)";
     return false;
   }
   const std::uint64_t coefficients = std::max<std::uint32_t>(1, header.Coefficients);
-  const std::uint64_t order = static_cast<std::uint64_t>(std::lround(std::sqrt(coefficients)));
-  if (header.Contents > 1 || header.Receivers > (1ull << 32) || order * order != coefficients ||
-    order > 8 || header.Lights * header.Receivers * coefficients > (1ull << 32))
+  if (header.Lights * header.Receivers * coefficients > (1ull << 32))
   {
     error = where + "header sizes out of range";
     return false;
-  }
-  for (double p : positions)
-  {
-    if (!std::isfinite(p))
-    {
-      error = where + "a cloud light position is NaN or infinite";
-      return false;
-    }
   }
   const vtkIdType lights = static_cast<vtkIdType>(header.Lights);
   cloud->Allocate(lights, static_cast<vtkIdType>(header.Receivers), static_cast<int>(coefficients));

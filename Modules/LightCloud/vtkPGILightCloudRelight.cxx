@@ -102,6 +102,26 @@ void vtkPGILightCloudRelight::SetLightIntensity(int index, double r, double g, d
   }
 }
 
+void vtkPGILightCloudRelight::SetLights(const std::vector<std::array<double, 6>>& lights)
+{
+  if (this->GetNumberOfLights() != static_cast<int>(lights.size()))
+  {
+    this->Lights.clear();
+    for (const auto& l : lights)
+    {
+      this->Lights.push_back({ { l[0], l[1], l[2] }, { l[3], l[4], l[5] } });
+    }
+    this->Modified();
+    return;
+  }
+  for (std::size_t k = 0; k < lights.size(); ++k)
+  {
+    const auto& l = lights[k];
+    this->SetLightPosition(static_cast<int>(k), l[0], l[1], l[2]);
+    this->SetLightIntensity(static_cast<int>(k), l[3], l[4], l[5]);
+  }
+}
+
 void vtkPGILightCloudRelight::SetViewPoint(double x, double y, double z)
 {
   if (!this->ViewPointSet || this->ViewPoint[0] != x || this->ViewPoint[1] != y ||

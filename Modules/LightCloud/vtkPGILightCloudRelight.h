@@ -58,6 +58,7 @@
 #include "vtkSmartPointer.h"       // for the locators
 #include "vtkStaticPointLocator.h" // for the locators
 
+#include <array>
 #include <map>
 #include <string>
 #include <utility>
@@ -78,7 +79,15 @@ public:
   void SetLightPosition(int index, double x, double y, double z);
   void SetLightIntensity(int index, double r, double g, double b);
   void RemoveAllLights();
-  int GetNumberOfLights() const { return static_cast<int>(this->Lights.size()); }
+#ifndef __VTK_WRAP__
+  /// All user lights at once (xyz, then RGB intensity, each), changing only
+  /// what differs: equal lights leave the filter unmodified.
+  void SetLights(const std::vector<std::array<double, 6>>& lights);
+#endif
+  int GetNumberOfLights() const
+  {
+    return static_cast<int>(this->Lights.size());
+  }
   /// User light `index`'s position and intensity (null for no such light).
   const double* GetLightPosition(int index) const
   {
@@ -92,10 +101,19 @@ public:
 
   /// Where glossy receivers are seen from (a camera position).
   void SetViewPoint(double x, double y, double z);
-  void SetViewPoint(const double p[3]) { this->SetViewPoint(p[0], p[1], p[2]); }
-  const double* GetViewPoint() const { return this->ViewPoint; }
+  void SetViewPoint(const double p[3])
+  {
+    this->SetViewPoint(p[0], p[1], p[2]);
+  }
+  const double* GetViewPoint() const
+  {
+    return this->ViewPoint;
+  }
   void RemoveViewPoint();
-  bool HasViewPoint() const { return this->ViewPointSet; }
+  bool HasViewPoint() const
+  {
+    return this->ViewPointSet;
+  }
 
   vtkSetClampMacro(NeighborCount, int, 1, 4096);
   vtkGetMacro(NeighborCount, int);
@@ -121,8 +139,14 @@ public:
   vtkGetMacro(LightsOutside, int);
   vtkGetMacro(CloudLightsUsed, int);
 
-  void SetCloudConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
-  void SetCloudData(vtkDataObject* cloud) { this->SetInputData(1, cloud); }
+  void SetCloudConnection(vtkAlgorithmOutput* output)
+  {
+    this->SetInputConnection(1, output);
+  }
+  void SetCloudData(vtkDataObject* cloud)
+  {
+    this->SetInputData(1, cloud);
+  }
 
   vtkMTimeType GetMTime() override;
 

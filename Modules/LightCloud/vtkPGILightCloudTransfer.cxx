@@ -11,6 +11,7 @@
 #include "vtkStringArray.h"
 
 #include <algorithm>
+#include <array>
 #include <string>
 
 namespace
@@ -62,21 +63,13 @@ bool vtkPGILightCloudTransfer::AddLight(vtkPolyData* receivers, const std::vecto
   }
   // The GI filter's point lights; unchanged ones leave the filter up to date.
   vtkPGILightCloudRelight* relight = this->Relight;
-  if (relight->GetNumberOfLights() != static_cast<int>(lights.size()))
+  std::vector<std::array<double, 6>> given;
+  for (const Light& l : lights)
   {
-    relight->RemoveAllLights();
-    for (const Light& l : lights)
-    {
-      relight->AddLight(l.Position[0], l.Position[1], l.Position[2], l.Intensity[0], l.Intensity[1],
-        l.Intensity[2]);
-    }
+    given.push_back({ l.Position[0], l.Position[1], l.Position[2], l.Intensity[0], l.Intensity[1],
+      l.Intensity[2] });
   }
-  for (std::size_t k = 0; k < lights.size(); ++k)
-  {
-    const Light& l = lights[k];
-    relight->SetLightPosition(static_cast<int>(k), l.Position[0], l.Position[1], l.Position[2]);
-    relight->SetLightIntensity(static_cast<int>(k), l.Intensity[0], l.Intensity[1], l.Intensity[2]);
-  }
+  relight->SetLights(given);
   if (relight->GetInput(0) != receivers)
   {
     relight->SetInputData(receivers);

@@ -28,6 +28,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -392,23 +393,13 @@ void vtkPGILightCloudPolyDataMapper::TakeLightsFromLighting()
   {
     return;
   }
-  const auto& points = lighting->GetPointLights();
-  vtkPGILightCloudRelight* relight = this->Relight;
-  if (relight->GetNumberOfLights() != static_cast<int>(points.size()))
+  std::vector<std::array<double, 6>> lights;
+  for (const auto& p : lighting->GetPointLights())
   {
-    relight->RemoveAllLights();
-    for (const auto& p : points)
-    {
-      relight->AddLight(p.Position[0], p.Position[1], p.Position[2], p.Intensity[0], p.Intensity[1],
-        p.Intensity[2]);
-    }
+    lights.push_back({ p.Position[0], p.Position[1], p.Position[2], p.Intensity[0], p.Intensity[1],
+      p.Intensity[2] });
   }
-  for (std::size_t k = 0; k < points.size(); ++k)
-  {
-    const auto& p = points[k];
-    relight->SetLightPosition(static_cast<int>(k), p.Position[0], p.Position[1], p.Position[2]);
-    relight->SetLightIntensity(static_cast<int>(k), p.Intensity[0], p.Intensity[1], p.Intensity[2]);
-  }
+  this->Relight->SetLights(lights);
 }
 
 void vtkPGILightCloudPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* act)

@@ -1,12 +1,15 @@
 // The Cornell box of Testing/Data/cornell-box.json (the light-cloud tests'
 // scene) as one mesh of receivers, its objects also given to an occluder.
-// For tests whose module depends on ProxyGI::Scene and ProxyGI::Reference.
+// For tests whose module depends on ProxyGI::Scene, ProxyGI::Reference and
+// ProxyGI::LightCloud.
 #ifndef pgiCornellBox_h
 #define pgiCornellBox_h
 
 #include "pgiScene.h"
 #include "vtkAppendPolyData.h"
 #include "vtkNew.h"
+#include "vtkPGILightCloud.h"
+#include "vtkPGILightCloudPrecompute.h"
 #include "vtkPGIMeshOccluder.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
@@ -41,6 +44,26 @@ inline vtkSmartPointer<vtkPolyData> LoadCornellBox(
   append->Update();
   vtkSmartPointer<vtkPolyData> box = append->GetOutput();
   return box;
+}
+
+/// A quick cloud over the box's inside: `cells` across, 32 gather rays;
+/// glossy for specular > 0 (Phong exponent 12, SH order `order`).
+inline vtkSmartPointer<vtkPGILightCloud> CornellCloud(
+  vtkPolyData* box, int cells, bool compress, double specular = 0.0, int order = 4)
+{
+  vtkNew<vtkPGILightCloudPrecompute> precompute;
+  precompute->SetInputData(box);
+  precompute->SetRegionOfInterest(-1.0, 1.0, -1.0, 1.0, 0.0, 2.0);
+  precompute->SetGridResolution(cells, cells, cells);
+  precompute->SetSamples(32);
+  precompute->SetSpecularAlbedo(specular);
+  precompute->SetPhongExponent(12.0);
+  precompute->SetGlossyOrder(order);
+  precompute->SetCompress(compress);
+  precompute->Update();
+  auto cloud = vtkSmartPointer<vtkPGILightCloud>::New();
+  cloud->DeepCopy(precompute->GetOutput());
+  return cloud;
 }
 } // namespace pgitest
 

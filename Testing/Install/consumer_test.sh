@@ -91,4 +91,10 @@ if [ -x "$bin/ExampleGIMapper" ]; then
   (cd "$work" && env -u DISPLAY "$bin/ExampleGIMapper" "$work/gi-mapper.png") | tee "$work/mapper.txt"
   grep -q "GI on the GPU: 4225 vertices, 1 proxies" "$work/mapper.txt" || fail "ExampleGIMapper did not run GI"
 fi
+if [ -x "$bin/LightCloudMapper" ]; then
+  (cd "$work" && env -u DISPLAY "$bin/LightCloudMapper" "$source/Testing/Data/cornell-box.json" \
+    "$work/light-cloud") | tee "$work/cloud.txt"
+  grep -q "^frame 2: light cloud on the GPU" "$work/cloud.txt" \
+    || fail "LightCloudMapper did not relight on the GPU"
+fi
 echo "consumer ($mode): passed"

@@ -11,7 +11,6 @@
 #include "pgiOffscreenWindow.h"
 #include "vtkPGILightCloud.h"
 #include "vtkPGILightCloudPolyDataMapper.h"
-#include "vtkPGILightCloudPrecompute.h"
 #include "vtkPGILightCloudRelight.h"
 #include "vtkPGIMeshOccluder.h"
 
@@ -134,17 +133,7 @@ int main(int argc, char* argv[])
     { "glossy order 4, dense", false, 0.5 }, { "glossy order 4, compressed", true, 0.5 } };
   for (const Case& c : cases)
   {
-    vtkNew<vtkPGILightCloudPrecompute> precompute;
-    precompute->SetInputData(box);
-    precompute->SetRegionOfInterest(-1.0, 1.0, -1.0, 1.0, 0.0, 2.0);
-    precompute->SetGridResolution(5, 5, 5);
-    precompute->SetSamples(32);
-    precompute->SetSpecularAlbedo(c.Specular);
-    precompute->SetPhongExponent(12.0);
-    precompute->SetCompress(c.Compress);
-    precompute->Update();
-    vtkNew<vtkPGILightCloud> cloud;
-    cloud->DeepCopy(precompute->GetOutput());
+    vtkSmartPointer<vtkPGILightCloud> cloud = pgitest::CornellCloud(box, 5, c.Compress, c.Specular);
 
     // CPU: the filter, then its radiance drawn as vertex colours.
     vtkNew<vtkPGILightCloudRelight> relight;

@@ -13,7 +13,6 @@
 #include "pgiTestingErrors.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILightCloud.h"
-#include "vtkPGILightCloudPrecompute.h"
 #include "vtkPGILightCloudRelight.h"
 #include "vtkPGILightCloudTransfer.h"
 #include "vtkPGILighting.h"
@@ -74,14 +73,7 @@ int TestLightCloudTransfer(int, char*[])
   {
     return pgitest::Result();
   }
-  vtkNew<vtkPGILightCloudPrecompute> precompute;
-  precompute->SetInputData(box);
-  precompute->SetRegionOfInterest(-1.0, 1.0, -1.0, 1.0, 0.0, 2.0);
-  precompute->SetGridResolution(3, 3, 3);
-  precompute->SetSamples(32);
-  precompute->Update();
-  vtkNew<vtkPGILightCloud> cloud;
-  cloud->DeepCopy(precompute->GetOutput());
+  vtkSmartPointer<vtkPGILightCloud> cloud = pgitest::CornellCloud(box, 3, false);
 
   const double light[3] = { 0.13, -0.41, 1.37 }, intensity[3] = { 1.0, 0.8, 0.6 };
   vtkNew<vtkPGILighting> lighting;

@@ -14,7 +14,6 @@
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILightCloud.h"
 #include "vtkPGILightCloudPolyDataMapper.h"
-#include "vtkPGILightCloudPrecompute.h"
 #include "vtkPGILightCloudRelight.h"
 #include "vtkPGILightCloudTransfer.h"
 #include "vtkPGILighting.h"
@@ -149,24 +148,6 @@ struct Stage
   }
 };
 
-vtkSmartPointer<vtkPGILightCloud> Precompute(
-  vtkPolyData* box, bool compress, double specular, int order = 4)
-{
-  vtkNew<vtkPGILightCloudPrecompute> precompute;
-  precompute->SetInputData(box);
-  precompute->SetRegionOfInterest(-1.0, 1.0, -1.0, 1.0, 0.0, 2.0);
-  precompute->SetGridResolution(3, 3, 3);
-  precompute->SetSamples(32);
-  precompute->SetSpecularAlbedo(specular);
-  precompute->SetPhongExponent(12.0);
-  precompute->SetGlossyOrder(order);
-  precompute->SetCompress(compress);
-  precompute->Update();
-  auto cloud = vtkSmartPointer<vtkPGILightCloud>::New();
-  cloud->DeepCopy(precompute->GetOutput());
-  return cloud;
-}
-
 vtkFloatArray* CPURadiance(
   vtkPGILightCloudRelight* relight, vtkPolyData* box, vtkPGILightCloud* cloud, bool view)
 {
@@ -234,7 +215,7 @@ int TestLightCloudMapper(int, char*[])
   // 1. Diffuse, dense and compressed: the GPU's sums are the CPU's.
   for (bool compress : { false, true })
   {
-    auto cloud = Precompute(box, compress, 0.0);
+    auto cloud = pgitest::CornellCloud(box, 3, compress, 0.0);
     vtkNew<vtkPGILightCloudRelight> cpu;
     SetUp(cpu, occluder);
     vtkFloatArray* radiance = CPURadiance(cpu, box, cloud, false);
@@ -276,7 +257,7 @@ int TestLightCloudMapper(int, char*[])
   // 3. Glossy (ks 0.5, exponent 12, order 4): per vertex it is the CPU
   //    filter seen from the camera; per fragment close to it, not the same.
   {
-    auto cloud = Precompute(box, false, 0.5);
+    auto cloud = pgitest::CornellCloud(box, 3, false, 0.5);
     vtkNew<vtkPGILightCloudRelight> cpu;
     SetUp(cpu, occluder);
     vtkFloatArray* radiance = CPURadiance(cpu, box, cloud, true);
@@ -299,7 +280,7 @@ int TestLightCloudMapper(int, char*[])
     PGI_CHECK(f.Mean > 0.01);
 
     // Compressed glossy: the GPU's reconstruction is the CPU's.
-    auto compressed = Precompute(box, true, 0.5);
+    auto compressed = pgitest::CornellCloud(box, 3, true, 0.5);
     vtkNew<vtkPGILightCloudRelight> cpuCompressed;
     SetUp(cpuCompressed, occluder);
     vtkFloatArray* r2 = CPURadiance(cpuCompressed, box, compressed, true);
@@ -356,7 +337,7 @@ int TestLightCloudMapper(int, char*[])
   //    the cloud's; the image is the CPU GI filter's with the cloud as its
   //    transfer (Radiance = LocalLights + IndirectLocal).
   {
-    auto cloud = Precompute(box, true, 0.0);
+    auto cloud = pgitest::CornellCloud(box, 3, true, 0.0);
     vtkNew<vtkPGILighting> lighting;
     lighting->SetUniformRadiance(0.0, 0.0, 0.0);
     lighting->AddPointLight(Light[0], Light[1], Light[2], 1.0, 0.8, 0.6);
