@@ -37,6 +37,27 @@
 
 vtkStandardNewMacro(vtkPGILightCloudPolyDataMapper);
 
+namespace
+{
+// Floats into `buffer` and a one-component texture buffer over them.
+bool TextureBuffer(vtkOpenGLRenderWindow* window, const std::vector<float>& values,
+  vtkOpenGLBufferObject* buffer, vtkSmartPointer<vtkTextureObject>& texture)
+{
+  if (!buffer->Upload(values, vtkOpenGLBufferObject::TextureBuffer))
+  {
+    return false;
+  }
+  if (texture)
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
+  texture = vtkSmartPointer<vtkTextureObject>::New();
+  texture->SetContext(window);
+  return texture->CreateTextureBuffer(
+    static_cast<unsigned int>(values.size()), 1, VTK_FLOAT, buffer);
+}
+} // namespace
+
 struct vtkPGILightCloudPolyDataMapper::Internals
 {
   vtkOpenGLRenderWindow* Window = nullptr;
@@ -270,20 +291,9 @@ bool vtkPGILightCloudPolyDataMapper::UpdateCloudLight(vtkRenderer* ren)
         std::to_string(maxTexels) + " floats");
     }
     if (!g.Codes->Upload(codes, vtkOpenGLBufferObject::ArrayBuffer) ||
-      !g.Data->Upload(data, vtkOpenGLBufferObject::TextureBuffer))
+      !TextureBuffer(window, data, g.Data, g.DataTexture))
     {
       return refuse("could not upload the cloud");
-    }
-    if (g.DataTexture)
-    {
-      g.DataTexture->ReleaseGraphicsResources(window);
-    }
-    g.DataTexture = vtkSmartPointer<vtkTextureObject>::New();
-    g.DataTexture->SetContext(window);
-    if (!g.DataTexture->CreateTextureBuffer(
-          static_cast<unsigned int>(data.size()), 1, VTK_FLOAT, g.Data))
-    {
-      return refuse("could not make the cloud's texture buffer");
     }
     g.Cloud = this->Cloud;
     g.CloudTime = this->Cloud->GetMTime();
@@ -320,20 +330,9 @@ bool vtkPGILightCloudPolyDataMapper::UpdateCloudLight(vtkRenderer* ren)
       vectors.assign(4, 0.0f);
     }
   }
-  if (!g.Vectors->Upload(vectors, vtkOpenGLBufferObject::TextureBuffer))
+  if (!TextureBuffer(window, vectors, g.Vectors, g.VectorTexture))
   {
     return refuse("could not upload the frame's vectors");
-  }
-  if (g.VectorTexture)
-  {
-    g.VectorTexture->ReleaseGraphicsResources(window);
-  }
-  g.VectorTexture = vtkSmartPointer<vtkTextureObject>::New();
-  g.VectorTexture->SetContext(window);
-  if (!g.VectorTexture->CreateTextureBuffer(
-        static_cast<unsigned int>(vectors.size()), 1, VTK_FLOAT, g.Vectors))
-  {
-    return refuse("could not make the frame's texture buffer");
   }
   g.Compressed = frame.Compressed;
   g.Stride = stride;
