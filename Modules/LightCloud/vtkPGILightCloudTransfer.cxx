@@ -64,6 +64,7 @@ bool vtkPGILightCloudTransfer::AddLight(vtkPolyData* receivers, const std::vecto
   // The GI filter's point lights; unchanged ones leave the filter up to date.
   vtkPGILightCloudRelight* relight = this->Relight;
   std::vector<std::array<double, 6>> given;
+  given.reserve(lights.size());
   for (const Light& l : lights)
   {
     given.push_back({ l.Position[0], l.Position[1], l.Position[2], l.Intensity[0], l.Intensity[1],

@@ -393,6 +393,7 @@ void vtkPGILightCloudPolyDataMapper::TakeLightsFromLighting()
     return;
   }
   std::vector<std::array<double, 6>> lights;
+  lights.reserve(lighting->GetPointLights().size());
   for (const auto& p : lighting->GetPointLights())
   {
     lights.push_back({ p.Position[0], p.Position[1], p.Position[2], p.Intensity[0], p.Intensity[1],
