@@ -31,6 +31,15 @@ vtkCxxSetObjectMacro(vtkPGILightCloudRelight, Occluder, vtkPGIOccluder);
 
 namespace
 {
+// Receivers per task of the per-receiver sums, fewer the more values each
+// has: enough work per task that a small mesh (a Cornell box) is not slowed
+// by the threads' fork and join (diffuse, measured: 0.15 ms serial, 0.3-1.7
+// ms split per zone on two threads).
+vtkIdType RelightGrain(int stride)
+{
+  return std::max<vtkIdType>(64, 3 * 4096 / std::max(3, stride));
+}
+
 bool Finite3(const double v[3])
 {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
@@ -451,7 +460,7 @@ int vtkPGILightCloudRelight::RequestData(
   if (!frame.Compressed && !frame.DenseLights.empty())
   {
     // Dense: a = sum_j w_j X_j, per receiver.
-    vtkSMPTools::For(0, n,
+    vtkSMPTools::For(0, n, RelightGrain(stride),
       [&](vtkIdType first, vtkIdType last)
       {
         for (vtkIdType i = first; i < last; ++i)
@@ -481,7 +490,7 @@ int vtkPGILightCloudRelight::RequestData(
     const vtkPGILightCloud::Zone& zone = cloud->GetZones()[set];
     const std::size_t clusters = zone.BasisCount.size();
     const vtkIdType zoneReceivers = static_cast<vtkIdType>(zone.Receivers.size());
-    vtkSMPTools::For(0, zoneReceivers,
+    vtkSMPTools::For(0, zoneReceivers, RelightGrain(stride),
       [&](vtkIdType first, vtkIdType last)
       {
         for (vtkIdType r = first; r < last; ++r)
@@ -526,7 +535,7 @@ int vtkPGILightCloudRelight::RequestData(
     seen->SetNumberOfComponents(3);
     seen->SetNumberOfTuples(n);
     float* s = seen->GetPointer(0);
-    vtkSMPTools::For(0, n,
+    vtkSMPTools::For(0, n, RelightGrain(stride),
       [&](vtkIdType first, vtkIdType last)
       {
         for (vtkIdType i = first; i < last; ++i)

@@ -556,10 +556,10 @@ void ReferenceTracer::EstimateIrradiance(const double x[3], const double n[3], s
   for (int i = 0; i < count; ++i)
   {
     double d[3], ind[3] = { 0, 0, 0 };
-    TracerAccess::Direct(*this->Impl, settings, x, n, rng, d, this->Rays);
+    TracerAccess::Direct(*this->Impl, settings, x, n, rng, d, this->RayCounter());
     if (settings.MaxBounces > 0)
     {
-      TracerAccess::Indirect(*this->Impl, settings, x, n, 1, rng, ind, this->Rays);
+      TracerAccess::Indirect(*this->Impl, settings, x, n, 1, rng, ind, this->RayCounter());
     }
     for (int k = 0; k < 3; ++k)
     {
@@ -594,7 +594,7 @@ void ReferenceTracer::EstimateRadianceAlongRay(const double origin[3], const dou
 {
   out = RadianceEstimate();
   Hit hit;
-  if (!TracerAccess::Intersect(*this->Impl, origin, direction, hit, this->Rays))
+  if (!TracerAccess::Intersect(*this->Impl, origin, direction, hit, this->RayCounter()))
   {
     float rgb[3] = { 0, 0, 0 };
     if (this->Impl->Environment)
@@ -648,12 +648,29 @@ void ReferenceTracer::OccludedRays(int count, const float* origins, const float*
     rtcOccluded1(this->Impl->Scene, &context, &ray);
     blocked[i] = ray.tfar < 0.0f ? 1 : 0;
   }
-  this->Rays.fetch_add(static_cast<std::uint64_t>(count), std::memory_order_relaxed);
+  this->RayCounter().fetch_add(static_cast<std::uint64_t>(count), std::memory_order_relaxed);
 }
 
 double ReferenceTracer::GetRayOffset() const
 {
   return this->Impl->Epsilon;
+}
+
+std::atomic<std::uint64_t>& ReferenceTracer::RayCounter() const
+{
+  static std::atomic<unsigned> nextSlot{ 0 };
+  thread_local const unsigned slot = nextSlot.fetch_add(1, std::memory_order_relaxed);
+  return this->Rays[slot % RayShards].Count;
+}
+
+std::uint64_t ReferenceTracer::GetRayCount() const
+{
+  std::uint64_t sum = 0;
+  for (const RayShard& shard : this->Rays)
+  {
+    sum += shard.Count.load(std::memory_order_relaxed);
+  }
+  return sum;
 }
 
 bool ReferenceTracer::SegmentBlocked(const double a[3], const double b[3]) const
@@ -668,7 +685,8 @@ bool ReferenceTracer::SegmentBlocked(const double a[3], const double b[3]) const
   {
     c /= length;
   }
-  return Occluded(Settings(), this->Impl->Scene, a, d, length - this->Impl->Epsilon, this->Rays);
+  return Occluded(
+    Settings(), this->Impl->Scene, a, d, length - this->Impl->Epsilon, this->RayCounter());
 }
 
 void ReferenceTracer::GatherHits(const double x[3], const double n[3], std::uint64_t seed,
@@ -690,7 +708,7 @@ void ReferenceTracer::GatherHits(const double x[3], const double n[3], std::uint
     u2 -= std::floor(u2);
     CosineSample(n, u1, u2, w);
     Hit hit;
-    if (!TracerAccess::Intersect(s, o, w, hit, this->Rays))
+    if (!TracerAccess::Intersect(s, o, w, hit, this->RayCounter()))
     {
       continue;
     }
@@ -711,7 +729,7 @@ bool ReferenceTracer::HitVertices(
   const Internal& s = *this->Impl;
   const double o[3] = { x[0] + s.Epsilon * n[0], x[1] + s.Epsilon * n[1], x[2] + s.Epsilon * n[2] };
   RTCRayHit rh;
-  TracerAccess::Cast(s, o, d, rh, this->Rays);
+  TracerAccess::Cast(s, o, d, rh, this->RayCounter());
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.geomID == s.SphereGeometry)
   {
     return false;
@@ -739,7 +757,7 @@ ReferenceTracer::PointPlace ReferenceTracer::PlacePoint(const double p[3], int r
     const double phi = 2.39996322972865332 * q;
     const double d[3] = { r * std::cos(phi), r * std::sin(phi), z };
     RTCRayHit rh;
-    TracerAccess::Cast(s, p, d, rh, this->Rays);
+    TracerAccess::Cast(s, p, d, rh, this->RayCounter());
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
     {
       continue;
@@ -781,7 +799,7 @@ bool ReferenceTracer::FirstHit(const double origin[3], const double direction[3]
   double normal[3], float albedo[3]) const
 {
   Hit hit;
-  if (!TracerAccess::Intersect(*this->Impl, origin, direction, hit, this->Rays))
+  if (!TracerAccess::Intersect(*this->Impl, origin, direction, hit, this->RayCounter()))
   {
     return false;
   }
