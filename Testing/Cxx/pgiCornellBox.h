@@ -8,8 +8,11 @@
 #include "pgiScene.h"
 #include "vtkAppendPolyData.h"
 #include "vtkNew.h"
+#include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILightCloud.h"
 #include "vtkPGILightCloudPrecompute.h"
+#include "vtkPGILightCloudTransfer.h"
+#include "vtkPGILighting.h"
 #include "vtkPGIMeshOccluder.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
@@ -64,6 +67,21 @@ inline vtkSmartPointer<vtkPGILightCloud> CornellCloud(
   auto cloud = vtkSmartPointer<vtkPGILightCloud>::New();
   cloud->DeepCopy(precompute->GetOutput());
   return cloud;
+}
+
+/// The CPU GI filter on the box with `cloud` as its point lights' transfer
+/// (GetLocalLightTransfer()), lit by `lighting`.
+inline vtkSmartPointer<vtkPGIGlobalIllumination> CloudGI(
+  vtkPolyData* box, vtkPGILightCloud* cloud, vtkPGILighting* lighting, vtkPGIOccluder* occluder)
+{
+  vtkNew<vtkPGILightCloudTransfer> transfer;
+  transfer->SetCloud(cloud);
+  transfer->GetRelight()->SetOccluder(occluder);
+  auto gi = vtkSmartPointer<vtkPGIGlobalIllumination>::New();
+  gi->SetInputData(box);
+  gi->SetLighting(lighting);
+  gi->SetLocalLightTransfer(transfer);
+  return gi;
 }
 } // namespace pgitest
 

@@ -78,13 +78,9 @@ int TestLightCloudTransfer(int, char*[])
   const double light[3] = { 0.13, -0.41, 1.37 }, intensity[3] = { 1.0, 0.8, 0.6 };
   vtkNew<vtkPGILighting> lighting;
   lighting->SetUniformRadiance(0.0, 0.0, 0.0);
-  vtkNew<vtkPGILightCloudTransfer> transfer;
-  transfer->SetCloud(cloud);
-  transfer->GetRelight()->SetOccluder(occluder);
-  vtkNew<vtkPGIGlobalIllumination> gi;
-  gi->SetInputData(box);
-  gi->SetLighting(lighting);
-  gi->SetLocalLightTransfer(transfer);
+  vtkSmartPointer<vtkPGIGlobalIllumination> gi = pgitest::CloudGI(box, cloud, lighting, occluder);
+  vtkSmartPointer<vtkPGILightCloudTransfer> transfer =
+    vtkPGILightCloudTransfer::SafeDownCast(gi->GetLocalLightTransfer());
 
   // 1. No point lights: no cloud.
   gi->Update();

@@ -341,13 +341,7 @@ int TestLightCloudMapper(int, char*[])
     vtkNew<vtkPGILighting> lighting;
     lighting->SetUniformRadiance(0.0, 0.0, 0.0);
     lighting->AddPointLight(Light[0], Light[1], Light[2], 1.0, 0.8, 0.6);
-    vtkNew<vtkPGILightCloudTransfer> transfer;
-    transfer->SetCloud(cloud);
-    transfer->GetRelight()->SetOccluder(occluder);
-    vtkNew<vtkPGIGlobalIllumination> gi;
-    gi->SetInputData(box);
-    gi->SetLighting(lighting);
-    gi->SetLocalLightTransfer(transfer);
+    vtkSmartPointer<vtkPGIGlobalIllumination> gi = pgitest::CloudGI(box, cloud, lighting, occluder);
     gi->Update();
     auto* radiance =
       vtkFloatArray::SafeDownCast(gi->GetOutput()->GetPointData()->GetArray("Radiance"));
