@@ -164,7 +164,10 @@ struct BlockReader
       return;
     }
     v.resize(static_cast<std::size_t>(count));
-    std::memcpy(v.data(), this->Bytes.data() + this->At, v.size() * sizeof(T));
+    if (!v.empty())
+    {
+      std::memcpy(v.data(), this->Bytes.data() + this->At, v.size() * sizeof(T));
+    }
     this->At += v.size() * sizeof(T);
   }
 };

@@ -158,7 +158,10 @@ bool vtkPGILightCloudPolyDataMapper::UpdateCloudLight(vtkRenderer* ren)
   vtkPolyData* input = this->CurrentInput;
   auto refuse = [&](const std::string& why)
   {
-    this->Status = "light cloud: " + why + ": VTK lighting only";
+    this->Status = "light cloud: " + why +
+      (this->Options.GlobalIllumination ? ": the GI mapper's light only" : ": VTK lighting only");
+    // Tried again next frame (cheap: the checks come before any upload).
+    g.HaveFrame = false;
     if (why != g.LastError)
     {
       vtkErrorMacro(<< "Light cloud not drawn: " << why << ".");
