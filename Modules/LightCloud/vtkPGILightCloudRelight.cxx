@@ -111,23 +111,27 @@ void vtkPGILightCloudRelight::SetLightIntensity(int index, double r, double g, d
   }
 }
 
-void vtkPGILightCloudRelight::SetLights(const std::vector<std::array<double, 6>>& lights)
+void vtkPGILightCloudRelight::SetLights(const std::vector<vtkPGILighting::PointLight>& lights)
 {
   if (this->GetNumberOfLights() != static_cast<int>(lights.size()))
   {
     this->Lights.clear();
     for (const auto& l : lights)
     {
-      this->Lights.push_back({ { l[0], l[1], l[2] }, { l[3], l[4], l[5] } });
+      UserLight u;
+      std::copy_n(l.Position, 3, u.Position);
+      std::copy_n(l.Intensity, 3, u.Intensity);
+      this->Lights.push_back(u);
     }
     this->Modified();
     return;
   }
   for (std::size_t k = 0; k < lights.size(); ++k)
   {
-    const auto& l = lights[k];
-    this->SetLightPosition(static_cast<int>(k), l[0], l[1], l[2]);
-    this->SetLightIntensity(static_cast<int>(k), l[3], l[4], l[5]);
+    const double* p = lights[k].Position;
+    const double* v = lights[k].Intensity;
+    this->SetLightPosition(static_cast<int>(k), p[0], p[1], p[2]);
+    this->SetLightIntensity(static_cast<int>(k), v[0], v[1], v[2]);
   }
 }
 

@@ -53,12 +53,12 @@
 #define vtkPGILightCloudRelight_h
 
 #include "ProxyGILightCloudModule.h"
+#include "vtkPGILighting.h" // for SetLights
 #include "vtkPolyDataAlgorithm.h"
 
 #include "vtkSmartPointer.h"       // for the locators
 #include "vtkStaticPointLocator.h" // for the locators
 
-#include <array>
 #include <map>
 #include <string>
 #include <utility>
@@ -80,9 +80,9 @@ public:
   void SetLightIntensity(int index, double r, double g, double b);
   void RemoveAllLights();
 #ifndef __VTK_WRAP__
-  /// All user lights at once (xyz, then RGB intensity, each), changing only
+  /// All user lights at once (a lighting's point lights), changing only
   /// what differs: equal lights leave the filter unmodified.
-  void SetLights(const std::vector<std::array<double, 6>>& lights);
+  void SetLights(const std::vector<vtkPGILighting::PointLight>& lights);
 #endif
   int GetNumberOfLights() const
   {

@@ -11,7 +11,6 @@
 #include "vtkStringArray.h"
 
 #include <algorithm>
-#include <array>
 #include <string>
 
 namespace
@@ -53,8 +52,9 @@ bool vtkPGILightCloudTransfer::CarriesDirectLight()
   return this->Cloud && this->Cloud->GetContents() == vtkPGILightCloud::DirectAndIndirect;
 }
 
-bool vtkPGILightCloudTransfer::AddLight(vtkPolyData* receivers, const std::vector<Light>& lights,
-  float* radiance, std::vector<std::string>& plan, std::string& why)
+bool vtkPGILightCloudTransfer::AddLight(vtkPolyData* receivers,
+  const std::vector<vtkPGILighting::PointLight>& lights, float* radiance,
+  std::vector<std::string>& plan, std::string& why)
 {
   if (!this->Cloud)
   {
@@ -63,14 +63,7 @@ bool vtkPGILightCloudTransfer::AddLight(vtkPolyData* receivers, const std::vecto
   }
   // The GI filter's point lights; unchanged ones leave the filter up to date.
   vtkPGILightCloudRelight* relight = this->Relight;
-  std::vector<std::array<double, 6>> given;
-  given.reserve(lights.size());
-  for (const Light& l : lights)
-  {
-    given.push_back({ l.Position[0], l.Position[1], l.Position[2], l.Intensity[0], l.Intensity[1],
-      l.Intensity[2] });
-  }
-  relight->SetLights(given);
+  relight->SetLights(lights);
   if (relight->GetInput(0) != receivers)
   {
     relight->SetInputData(receivers);

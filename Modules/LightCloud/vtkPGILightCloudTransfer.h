@@ -41,8 +41,8 @@ public:
   vtkPGILightCloudRelight* GetRelight() { return this->Relight; }
 
 #ifndef __VTK_WRAP__
-  bool AddLight(vtkPolyData* receivers, const std::vector<Light>& lights, float* radiance,
-    std::vector<std::string>& plan, std::string& why) override;
+  bool AddLight(vtkPolyData* receivers, const std::vector<vtkPGILighting::PointLight>& lights,
+    float* radiance, std::vector<std::string>& plan, std::string& why) override;
 #endif
   bool CarriesDirectLight() override;
   /// How many times the cloud's light was recomputed (a static light reuses it).

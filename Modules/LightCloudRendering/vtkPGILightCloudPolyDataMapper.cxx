@@ -28,7 +28,6 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -395,14 +394,7 @@ void vtkPGILightCloudPolyDataMapper::TakeLightsFromLighting()
   {
     return;
   }
-  std::vector<std::array<double, 6>> lights;
-  lights.reserve(lighting->GetPointLights().size());
-  for (const auto& p : lighting->GetPointLights())
-  {
-    lights.push_back({ p.Position[0], p.Position[1], p.Position[2], p.Intensity[0], p.Intensity[1],
-      p.Intensity[2] });
-  }
-  this->Relight->SetLights(lights);
+  this->Relight->SetLights(lighting->GetPointLights());
 }
 
 void vtkPGILightCloudPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* act)

@@ -525,17 +525,9 @@ void vtkPGIGlobalIllumination::AddTransferredLight(
                          "lights' soft shadows draw; precompute it with IncludeDirect off)");
     return;
   }
-  std::vector<vtkPGILocalLightTransfer::Light> lights;
-  for (const auto& p : points)
-  {
-    vtkPGILocalLightTransfer::Light l;
-    std::copy_n(p.Position, 3, l.Position);
-    std::copy_n(p.Intensity, 3, l.Intensity);
-    lights.push_back(l);
-  }
   std::string why;
   std::vector<std::string> lines;
-  if (!this->LocalLightTransfer->AddLight(receivers, lights, cloud->GetPointer(0), lines, why))
+  if (!this->LocalLightTransfer->AddLight(receivers, points, cloud->GetPointer(0), lines, why))
   {
     vtkErrorMacro(<< "The light cloud cannot light these receivers: " << why);
     cloud->FillValue(0.0f);

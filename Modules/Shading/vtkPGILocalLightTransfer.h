@@ -15,6 +15,7 @@
 
 #include "ProxyGIShadingModule.h"
 #include "vtkObject.h"
+#include "vtkPGILighting.h" // for the point lights
 
 #include <string>
 #include <vector>
@@ -28,18 +29,14 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
 #ifndef __VTK_WRAP__
-  struct Light
-  {
-    double Position[3];
-    double Intensity[3]; // W/sr, RGB
-  };
   /**
    * Adds the transferred light of `lights` at the points of `receivers` to
    * `radiance` (RGB floats per point). Appends plan lines (what ran, lights
    * skipped and why, reused or recomputed). False, with the reason in
    * `why`, when the transfer cannot serve these receivers or lights.
    */
-  virtual bool AddLight(vtkPolyData* receivers, const std::vector<Light>& lights, float* radiance,
+  virtual bool AddLight(vtkPolyData* receivers,
+    const std::vector<vtkPGILighting::PointLight>& lights, float* radiance,
     std::vector<std::string>& plan, std::string& why) = 0;
 #endif
   /// Whether the transferred light includes the lights' direct light.
