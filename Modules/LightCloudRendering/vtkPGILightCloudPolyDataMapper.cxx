@@ -35,6 +35,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkPGILightCloudPolyDataMapper);
+vtkCxxSetObjectMacro(vtkPGILightCloudPolyDataMapper, Cloud, vtkPGILightCloud);
 
 namespace
 {
@@ -118,24 +119,6 @@ vtkPGILightCloudPolyDataMapper::vtkPGILightCloudPolyDataMapper()
 vtkPGILightCloudPolyDataMapper::~vtkPGILightCloudPolyDataMapper()
 {
   this->SetCloud(nullptr);
-}
-
-void vtkPGILightCloudPolyDataMapper::SetCloud(vtkPGILightCloud* cloud)
-{
-  if (this->Cloud == cloud)
-  {
-    return;
-  }
-  if (this->Cloud)
-  {
-    this->Cloud->UnRegister(this);
-  }
-  this->Cloud = cloud;
-  if (this->Cloud)
-  {
-    this->Cloud->Register(this);
-  }
-  this->Modified();
 }
 
 vtkMTimeType vtkPGILightCloudPolyDataMapper::GetMTime()
