@@ -409,7 +409,7 @@ void BenchBunnyOverGround(benchmark::State& state, double hierarchy)
 // each update moves the proxies by a small step; variant 0 keeps the sun in
 // the SH, 1 shadows it by the proxies' cones, 2 by rays against the meshes,
 // 3 the same with the meshes marked changed (the Embree scene rebuilt).
-void BenchBrightUpdate(benchmark::State& state, int variant)
+void BenchBrightUpdate(benchmark::State& state, int variant, int planeDirections)
 {
   SceneDescription scene = DefaultScene();
   scene.EnvironmentMap = "environments/sunrise.exr";
@@ -431,6 +431,7 @@ void BenchBrightUpdate(benchmark::State& state, int variant)
     gi->GetSettings()->SetIndirectMode(vtkPGIGISettings::INDIRECT_MODE_SHADOWED);
     gi->GetSettings()->SetHierarchyAngle(25.0);
     gi->GetSettings()->SetBrightLights(variant > 0);
+    gi->GetSettings()->SetPlaneBounceDirections(planeDirections);
     gi->SetOccluder(occluder);
     gi->Update();
     filters.push_back(gi);
@@ -495,7 +496,18 @@ int main(int argc, char** argv)
     "BrightLights/frame, rays, meshes moving" };
   for (int variant = 0; variant < 4; ++variant)
   {
-    benchmark::RegisterBenchmark(bright[variant], BenchBrightUpdate, variant)
+    benchmark::RegisterBenchmark(bright[variant], BenchBrightUpdate, variant, 64)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  }
+  // The ground's bounce: one plane point per receiver against the planes'
+  // light map (rebuilt every update, as the proxies move).
+  for (int directions : { 0, 16, 64, 256 })
+  {
+    const std::string name = directions == 0
+      ? std::string("PlaneBounce/frame, rays, one plane point")
+      : "PlaneBounce/frame, rays, light map, " + std::to_string(directions) + " directions";
+    benchmark::RegisterBenchmark(name.c_str(), BenchBrightUpdate, 2, directions)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
   }

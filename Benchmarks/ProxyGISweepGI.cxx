@@ -174,6 +174,7 @@ int main(int argc, char* argv[])
     bool Shadows = true;
     int Planes = vtkPGIGISettings::PLANES_IN_LIGHT;
     bool PlaneBounceShadows = true;
+    int PlaneDirections = 64; // the planes' light map's look-ups (0: one point)
     int Mode = vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
     int Blocking = vtkPGIGISettings::BLOCKING_PER_SPHERE;
     bool SelfVisibility = false;
@@ -226,6 +227,14 @@ int main(int argc, char* argv[])
   {
     Config c{ "plane bounce", "plane uniformly lit (no proxy shadow on it)" };
     c.PlaneBounceShadows = false;
+    configs.push_back(c);
+  }
+  for (int directions : { 0, 16, 256 })
+  {
+    Config c{ "plane bounce",
+      directions == 0 ? std::string("one plane point per receiver (the GPU's way)")
+                      : "light map, " + std::to_string(directions) + " directions" };
+    c.PlaneDirections = directions;
     configs.push_back(c);
   }
   {
@@ -305,6 +314,7 @@ int main(int argc, char* argv[])
         gi->GetSettings()->SetShadows(c.Shadows);
         gi->GetSettings()->SetPlaneBlocking(c.Planes);
         gi->GetSettings()->SetPlaneBounceShadows(c.PlaneBounceShadows);
+        gi->GetSettings()->SetPlaneBounceDirections(c.PlaneDirections);
         gi->GetSettings()->SetIndirectMode(c.Mode);
         gi->GetSettings()->SetSphericalLightBlocking(c.Blocking);
         gi->GetSettings()->SetBrightLights(c.Bright > 0);
@@ -447,13 +457,16 @@ int main(int argc, char* argv[])
       return 1;
     }
     // Unshadowed, shadowed, both traced; then shadowed and traced with the
-    // bright lights taken out (proxies' cones, rays against the meshes).
-    for (int variant = 0; variant < 6; ++variant)
+    // bright lights taken out (proxies' cones, rays against the meshes); last
+    // the rays with the planes' light sampled at one point per receiver (the
+    // GPU's way, and the filter's before the planes' light maps).
+    for (int variant = 0; variant < 7; ++variant)
     {
       const int mode = variant % 2 || variant >= 4 ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
                                                    : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
       const bool traced = variant >= 2;
-      const int bright = variant >= 4 ? variant - 3 : 0;
+      const int bright = variant == 6 ? 2 : (variant >= 4 ? variant - 3 : 0);
+      const bool onePoint = variant == 6;
       std::vector<vtkSmartPointer<vtkPolyData>> shaded;
       vtkIdType count = 0;
       double best = 1e300;
@@ -468,6 +481,7 @@ int main(int argc, char* argv[])
           ConfigureGlobalIllumination(gi, sd, ld, sp);
           gi->GetSettings()->SetIndirectMode(mode);
           gi->GetSettings()->SetBrightLights(bright > 0);
+          gi->GetSettings()->SetPlaneBounceDirections(onePoint ? 0 : 64);
           gi->SetOccluder(bright == 2 ? meshes.Get() : nullptr);
           gi->Update();
           shaded.push_back(gi->GetOutput());
@@ -480,7 +494,8 @@ int main(int argc, char* argv[])
       std::snprintf(line, sizeof(line),
         "| %s | %s | %lld | %.3f | %.1f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% |\n",
         sd.Name.c_str(),
-        bright == 2     ? "shadowed, traced, bright lights (rays)"
+        onePoint        ? "shadowed, traced, bright rays, planes' light at one point"
+          : bright == 2 ? "shadowed, traced, bright lights (rays)"
           : bright == 1 ? "shadowed, traced, bright lights (proxies)"
           : mode == vtkPGIGISettings::INDIRECT_MODE_SHADOWED
           ? (traced ? "shadowed, self-visibility traced" : "shadowed")

@@ -66,6 +66,9 @@ an option a mode has no use for as "note: ... does not apply".
   --bright-shadows R  their shadows: rays (default: against the scene's meshes,
                       Embree) or proxies (the light's cone against the spheres)
   --bright-rays N     rays per light and vertex (default 16: the penumbra)
+  --plane-directions N  vertex mode: directions each vertex averages the
+                      ground's shadowed light over for its bounce (default
+                      64; 0: one ground point, the GPU's way)
   --background B      map (default: the environment behind the scene, at the
                       picture's exposure, as Embree's image shows it) or none
   --size WxH          image size (default: the scene's)

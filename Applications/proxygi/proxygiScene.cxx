@@ -77,6 +77,7 @@ struct RenderOptions
   int SelfVisibility = 256; // rays per vertex of the meshes' own visibility; 0: the rules
   std::string BrightLights = "on", BrightShadows = "rays", Background = "map";
   int BrightRays = 16;
+  int PlaneDirections = 64; // the planes' bounce: look-ups per receiver (0: one point)
   int ExpMethod = vtkPGIGISettings::EXP_HYB;
   std::string MethodName = "HYB", IndirectName = "shadowed";
   double HierarchyAngle = 25.0, Exposure = 0.0;
@@ -124,6 +125,7 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   o.Background = Option(args, "--background", "map");
   o.BrightShadows = Option(args, "--bright-shadows", "rays");
   o.BrightRays = static_cast<int>(NumberOption(args, "--bright-rays", 16, ok));
+  o.PlaneDirections = static_cast<int>(NumberOption(args, "--plane-directions", 64, ok));
   o.PixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
   o.Exposure = NumberOption(args, "--exposure", 0.0, ok);
   o.Output = Option(args, "-o", "proxygi-render.png");
@@ -148,12 +150,14 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
     o.PixelSpp < 1 || o.SelfVisibility < 0 || o.SelfVisibility > 65536 ||
     (o.BrightLights != "on" && o.BrightLights != "off") ||
     (o.BrightShadows != "rays" && o.BrightShadows != "proxies") ||
-    (o.Background != "map" && o.Background != "none") || o.BrightRays < 1 || o.BrightRays > 256)
+    (o.Background != "map" && o.Background != "none") || o.BrightRays < 1 || o.BrightRays > 256 ||
+    o.PlaneDirections < 0 || o.PlaneDirections > 1024)
   {
     vtkLogF(ERROR,
       "proxygi render: --mode gpu|vertex|image-space, --scale 1|2|4|8, "
       "--pixel-reference-spp >= 1, 0 <= --self-visibility <= 65536, --bright-lights on|off, "
-      "--bright-shadows rays|proxies, 1 <= --bright-rays <= 256, --background map|none");
+      "--bright-shadows rays|proxies, 1 <= --bright-rays <= 256, --background map|none, "
+      "0 <= --plane-directions <= 1024");
     return false;
   }
   if (o.IndirectName != "shadowed" && o.IndirectName != "unshadowed" && o.IndirectName != "off")
@@ -192,6 +196,7 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
     notFor("--bright-lights", sh);
     notFor("--bright-shadows", sh);
     notFor("--bright-rays", sh);
+    notFor("--plane-directions", "the GPU backends sample the planes' light at one point");
   }
   if (o.ImageSpace())
   {
@@ -226,6 +231,7 @@ vtkSmartPointer<vtkPGIGISettings> MakeSettings(
   settings->SetHierarchyAngle(o.HierarchyAngle);
   settings->SetBrightLights(o.BrightLights == "on");
   settings->SetBrightLightRays(o.BrightRays);
+  settings->SetPlaneBounceDirections(o.PlaneDirections);
   SetBackendPlaneDefaults(settings, o.Mode);
   return settings;
 }

@@ -144,6 +144,7 @@ vtkPGIGISettings::Support KernelSupport(const char* backend, int maxOrder)
   s.SelfVisibility = false;
   s.BrightLights = false;
   s.LightCloud = false;
+  s.PlaneBounceDirections = false; // pgiPlaneShadowScale: one plane point
   s.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
   return s;
 }

@@ -30,6 +30,53 @@
 namespace proxygi
 {
 
+vtkSmartPointer<vtkTransform> ObjectTransform(const SceneObject& object)
+{
+  auto transform = vtkSmartPointer<vtkTransform>::New();
+  transform->PostMultiply();
+  transform->Scale(object.Scale, object.Scale, object.Scale);
+  transform->RotateX(object.Rotate[0]);
+  transform->RotateY(object.Rotate[1]);
+  transform->RotateZ(object.Rotate[2]);
+  transform->Translate(object.Translate);
+  return transform;
+}
+
+void PlaneCorners(const SceneObject& object, double origin[3], double point1[3], double point2[3])
+{
+  if (object.PlaneCorners)
+  {
+    std::copy_n(object.PlaneOrigin, 3, origin);
+    std::copy_n(object.PlanePoint1, 3, point1);
+    std::copy_n(object.PlanePoint2, 3, point2);
+    return;
+  }
+  const double* c = object.PlaneCenter;
+  const double h = 0.5 * object.PlaneSize;
+  const double o[3] = { c[0] - h, c[1] - h, c[2] }, a[3] = { c[0] + h, c[1] - h, c[2] },
+               b[3] = { c[0] - h, c[1] + h, c[2] };
+  std::copy_n(o, 3, origin);
+  std::copy_n(a, 3, point1);
+  std::copy_n(b, 3, point2);
+}
+
+void PlaneExtent(
+  const SceneObject& object, double centre[3], double halfEdge1[3], double halfEdge2[3])
+{
+  double o[3], p1[3], p2[3];
+  PlaneCorners(object, o, p1, p2);
+  vtkSmartPointer<vtkTransform> transform = ObjectTransform(object);
+  transform->TransformPoint(o, o);
+  transform->TransformPoint(p1, p1);
+  transform->TransformPoint(p2, p2);
+  for (int c = 0; c < 3; ++c)
+  {
+    halfEdge1[c] = 0.5 * (p1[c] - o[c]);
+    halfEdge2[c] = 0.5 * (p2[c] - o[c]);
+    centre[c] = o[c] + halfEdge1[c] + halfEdge2[c];
+  }
+}
+
 SceneDescription DefaultScene()
 {
   SceneDescription scene;
@@ -636,26 +683,22 @@ bool BuildScene(const SceneDescription& scene, LoadedScene& loaded, std::string&
         return false;
       }
     }
-    else if (object.Type == SceneObject::Kind::Plane && object.PlaneCorners)
-    {
-      vtkNew<vtkPlaneSource> plane;
-      const double *o = object.PlaneOrigin, *p1 = object.PlanePoint1, *p2 = object.PlanePoint2;
-      plane->SetOrigin(o[0], o[1], o[2]);
-      plane->SetPoint1(p1[0], p1[1], p1[2]);
-      plane->SetPoint2(p2[0], p2[1], p2[2]);
-      plane->SetResolution(object.PlaneResolution[0], object.PlaneResolution[1]);
-      plane->Update();
-      mesh = plane->GetOutput();
-    }
     else if (object.Type == SceneObject::Kind::Plane)
     {
       vtkNew<vtkPlaneSource> plane;
-      const double* c = object.PlaneCenter;
-      const double h = 0.5 * object.PlaneSize;
-      plane->SetOrigin(c[0] - h, c[1] - h, c[2]);
-      plane->SetPoint1(c[0] + h, c[1] - h, c[2]);
-      plane->SetPoint2(c[0] - h, c[1] + h, c[2]);
-      plane->SetResolution(64, 64);
+      double o[3], p1[3], p2[3];
+      PlaneCorners(object, o, p1, p2);
+      plane->SetOrigin(o);
+      plane->SetPoint1(p1);
+      plane->SetPoint2(p2);
+      if (object.PlaneCorners)
+      {
+        plane->SetResolution(object.PlaneResolution[0], object.PlaneResolution[1]);
+      }
+      else
+      {
+        plane->SetResolution(64, 64);
+      }
       plane->Update();
       mesh = plane->GetOutput();
     }
@@ -673,16 +716,9 @@ bool BuildScene(const SceneDescription& scene, LoadedScene& loaded, std::string&
       sphere->Update();
       mesh = sphere->GetOutput();
     }
-    vtkNew<vtkTransform> transform;
-    transform->PostMultiply();
-    transform->Scale(object.Scale, object.Scale, object.Scale);
-    transform->RotateX(object.Rotate[0]);
-    transform->RotateY(object.Rotate[1]);
-    transform->RotateZ(object.Rotate[2]);
-    transform->Translate(object.Translate);
     vtkNew<vtkTransformPolyDataFilter> moved;
     moved->SetInputData(mesh);
-    moved->SetTransform(transform);
+    moved->SetTransform(ObjectTransform(object));
     vtkNew<vtkTriangleFilter> triangles;
     triangles->SetInputConnection(moved->GetOutputPort());
     triangles->PassVertsOff();

@@ -53,6 +53,7 @@
 class vtkCamera;
 class vtkPGILighting;
 class vtkPolyData;
+class vtkTransform;
 
 namespace proxygi
 {
@@ -110,6 +111,19 @@ struct SceneDescription
 
 /// The built-in default scene: the bunny over a ground plane, forest map.
 PROXYGISCENE_EXPORT SceneDescription DefaultScene();
+
+/// An object's scale, rotation and translation, in that order.
+PROXYGISCENE_EXPORT vtkSmartPointer<vtkTransform> ObjectTransform(const SceneObject& object);
+
+/// A plane object's corners before its transform: vtkPlaneSource's origin,
+/// point1 and point2 (a "plane": its square; a "quad": as given).
+PROXYGISCENE_EXPORT void PlaneCorners(
+  const SceneObject& object, double origin[3], double point1[3], double point2[3]);
+
+/// A plane object as placed: its centre and half edges (the blocker
+/// plane's extent, vtkPGIGlobalIllumination::AddBlockerPlane).
+PROXYGISCENE_EXPORT void PlaneExtent(
+  const SceneObject& object, double centre[3], double halfEdge1[3], double halfEdge2[3]);
 
 /// Parses a JSON scene file; false with a message naming the problem.
 PROXYGISCENE_EXPORT bool LoadScene(

@@ -208,8 +208,11 @@ bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded,
       {
         cellNormals->GetTuple(0, n);
       }
-      proxies.Planes.push_back({ centre[0], centre[1], centre[2], n[0], n[1], n[2],
-        object.Albedo[0], object.Albedo[1], object.Albedo[2] });
+      double middle[3], e1[3], e2[3];
+      PlaneExtent(object, middle, e1, e2);
+      proxies.Planes.push_back(
+        { middle[0], middle[1], middle[2], n[0], n[1], n[2], object.Albedo[0], object.Albedo[1],
+          object.Albedo[2], e1[0], e1[1], e1[2], e2[0], e2[1], e2[2] });
       continue;
     }
     if (object.Type == SceneObject::Kind::Sphere)
@@ -318,7 +321,7 @@ void ConfigureGlobalIllumination(vtkPGIGlobalIllumination* gi, const SceneDescri
   gi->RemoveAllBlockerPlanes();
   for (const auto& p : proxies.Planes)
   {
-    gi->AddBlockerPlane(p.data(), p.data() + 3, p.data() + 6);
+    gi->AddBlockerPlane(p.data(), p.data() + 3, p.data() + 6, p.data() + 9, p.data() + 12);
   }
   ConfigureSettings(gi->GetSettings(), scene);
 }

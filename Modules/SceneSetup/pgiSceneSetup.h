@@ -46,8 +46,9 @@ struct SceneProxies
   /// sphere (exact), then the hierarchy above them (vtkPGISphereHierarchy):
   /// "Radius", "Albedo", "ObjectId" (scene object index), "Level", "Parent".
   vtkSmartPointer<vtkPolyData> Spheres;
-  /// Scene planes as infinite blocker planes: origin, normal, albedo.
-  std::vector<std::array<double, 9>> Planes;
+  /// Scene planes as blocker planes: origin (their centre), normal, albedo,
+  /// then their two half edges (AddBlockerPlane's extent).
+  std::vector<std::array<double, 15>> Planes;
   vtkIdType Leaves = 0;
   double Seconds = 0.0; // building (or reading) them
   bool Cached = false;  // every mesh's set came from the cache

@@ -79,7 +79,8 @@ SecondaryLights::SecondaryLights(
 
 void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   const Blockers& blockers, const std::vector<SeenBlocker>& seen, float visibilityDC,
-  const float n[3], float rgb[3], const float* planeScale, bool planesOnly, int silentObject)
+  const float n[3], float rgb[3], const float* planeScale, bool planesOnly, int silentObject,
+  bool planesSeenPast)
 {
   const bool silence = silentObject >= 0 && blockers.Object.size() == blockers.Spheres();
   rgb[0] = rgb[1] = rgb[2] = 0.0f;
@@ -92,7 +93,7 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   const sh::IndirectTables& indirect = sh::IndirectTables::Get(order);
   float h[sh::MaxCoefficients], zh[sh::MaxOrder], cap[sh::MaxCoefficients];
   sh::DiffuseTransfer(order, n[0], n[1], n[2], h);
-  float sum[3] = { 0, 0, 0 };
+  float sum[3] = { 0, 0, 0 }, planeSum[3] = { 0, 0, 0 };
   float solidAngles = 0.0f;
   for (const SeenBlocker& b : seen)
   {
@@ -106,18 +107,22 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
     }
     sh::RotateScaledZonal(order, zh, b.Dir[0], b.Dir[1], b.Dir[2], cap);
     const float capWeight = sh::Dot(n2, h, cap);
-    solidAngles += static_cast<float>(sh::CapSolidAngle(b.Theta));
+    if (b.Index >= 0 || !planesSeenPast)
+    {
+      solidAngles += static_cast<float>(sh::CapSolidAngle(b.Theta));
+    }
     if (b.Index < 0)
     {
       // A plane: uniform radiance, its albedo times the response at its normal.
       const int k = -1 - b.Index;
       const float* pn = &blockers.PlaneNormal[3 * k];
+      float* to = planesSeenPast ? planeSum : sum;
       for (int c = 0; c < 3; ++c)
       {
         const float r = blockers.PlaneAlbedo[3 * k + c] *
           (planeScale ? planeScale[3 * k + c] : 1.0f) *
           sh::Reconstruct(order, &lights.Response[c * n2], pn[0], pn[1], pn[2]);
-        sum[c] += r * capWeight;
+        to[c] += r * capWeight;
       }
       continue;
     }
@@ -152,7 +157,7 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   const float xi = sh::OverlapNormalization(visibilityDC, solidAngles);
   for (int c = 0; c < 3; ++c)
   {
-    rgb[c] = std::max(0.0f, xi * sum[c]);
+    rgb[c] = std::max(0.0f, xi * sum[c] + planeSum[c]);
   }
 }
 

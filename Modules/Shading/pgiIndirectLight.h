@@ -63,12 +63,16 @@ struct PROXYGISHADING_EXPORT SecondaryLights
 PROXYGISHADING_EXPORT void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   const Blockers& blockers, const std::vector<SeenBlocker>& seen, float visibilityDC,
   const float n[3], float rgb[3], const float* planeScale = nullptr, bool planesOnly = false,
-  int silentObject = -1);
+  int silentObject = -1, bool planesSeenPast = false);
 
 /// (planeScale: per plane and channel, see PlaneShadowScale; planesOnly: the
 /// spheres count for the overlap normalisation but emit nothing, for when
 /// they are spherical lights of the shadowed model; silentObject: the same
-/// for the spheres of that object, whose bounce the receiver has traced.)
+/// for the spheres of that object, whose bounce the receiver has traced;
+/// planesSeenPast: planeScale already weighs each direction to a plane by
+/// the visibility of what stands in front of it (PlaneLightMap::Scale with
+/// g), so the planes take no overlap normalisation and count in none, and
+/// visibilityDC is that of the spheres alone.)
 
 /**
  * How much of a plane's light reaches the part of it a receiver at p with

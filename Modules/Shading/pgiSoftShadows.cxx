@@ -37,11 +37,15 @@ void Blockers::AddSphere(float x, float y, float z, float r, const float* albedo
   this->Albedo.insert(this->Albedo.end(), a, a + 3);
 }
 
-void Blockers::AddPlane(const float origin[3], const float normal[3], const float* albedo)
+void Blockers::AddPlane(
+  const float origin[3], const float normal[3], const float* albedo, const float* halfEdges)
 {
   const float black[3] = { 0, 0, 0 };
   const float* a = albedo ? albedo : black;
   this->PlaneAlbedo.insert(this->PlaneAlbedo.end(), a, a + 3);
+  const float unbounded[6] = { 0, 0, 0, 0, 0, 0 };
+  const float* e = halfEdges ? halfEdges : unbounded;
+  this->PlaneExtent.insert(this->PlaneExtent.end(), e, e + 6);
   const float len =
     std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
   this->PlaneOrigin.insert(this->PlaneOrigin.end(), origin, origin + 3);

@@ -46,9 +46,14 @@ struct PROXYGISHADING_EXPORT Blockers
   /// receivers that carry their own object's visibility (SelfVisibility).
   std::vector<int> Object;
   std::vector<float> PlaneOrigin, PlaneNormal, PlaneAlbedo; // 3 floats each per plane
+  /// Per plane, 6 floats: two half-edge vectors e1, e2 in the plane; the
+  /// plane reflects light from origin + a e1 + b e2, |a|, |b| <= 1, only
+  /// (PlaneLightMap). All 0: unbounded. Its blocking is the infinite plane's.
+  std::vector<float> PlaneExtent;
   void AddSphere(
     float x, float y, float z, float r, const float* albedo = nullptr, int object = -1);
-  void AddPlane(const float origin[3], const float normal[3], const float* albedo = nullptr);
+  void AddPlane(const float origin[3], const float normal[3], const float* albedo = nullptr,
+    const float* halfEdges = nullptr);
   std::size_t Spheres() const { return this->X.size(); }
   std::size_t Planes() const { return this->PlaneOrigin.size() / 3; }
   /// Whether p lies strictly above every plane: the receivers whose light

@@ -73,11 +73,14 @@ void vtkPGIGIBake::SetSettings(vtkPGIGISettings* settings)
 }
 
 void vtkPGIGIBake::AddBlockerPlane(
-  const double origin[3], const double normal[3], const double albedo[3])
+  const double origin[3], const double normal[3], const double albedo[3], const double* halfEdges)
 {
   this->Planes.insert(this->Planes.end(), origin, origin + 3);
   this->Planes.insert(this->Planes.end(), normal, normal + 3);
   this->Planes.insert(this->Planes.end(), albedo, albedo + 3);
+  const double unbounded[6] = { 0, 0, 0, 0, 0, 0 };
+  const double* e = halfEdges ? halfEdges : unbounded;
+  this->PlaneExtents.insert(this->PlaneExtents.end(), e, e + 6);
   this->Modified();
 }
 
@@ -86,6 +89,7 @@ void vtkPGIGIBake::RemoveAllBlockerPlanes()
   if (!this->Planes.empty())
   {
     this->Planes.clear();
+    this->PlaneExtents.clear();
     this->Modified();
   }
 }
@@ -249,12 +253,16 @@ bool vtkPGIGIBake::ReadBlockers()
   }
   for (std::size_t k = 0; k + 8 < this->Planes.size(); k += 9)
   {
-    float v[9];
+    float v[15];
     for (int q = 0; q < 9; ++q)
     {
       v[q] = static_cast<float>(this->Planes[k + q]);
     }
-    b.SceneBlockers.AddPlane(v, v + 3, v + 6);
+    for (int q = 0; q < 6; ++q)
+    {
+      v[9 + q] = static_cast<float>(this->PlaneExtents[k / 9 * 6 + q]);
+    }
+    b.SceneBlockers.AddPlane(v, v + 3, v + 6, v + 9);
   }
   return true;
 }
@@ -271,6 +279,7 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting, proxygi::BakedScene& p
     return false;
   }
   const int order = b.Order;
+  b.Environment = environment;
   LightKey key;
   key.Environment = environment;
   key.Time = lighting->GetMTime();

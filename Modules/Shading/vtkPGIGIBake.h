@@ -68,6 +68,10 @@ struct PROXYGISHADING_EXPORT BakedScene
   ProxyHierarchy Hierarchy;
   /// L, 3 x n^2 channel-major (R, G, B rows).
   std::vector<double> Light;
+  /// The whole map L came from (the lighting's; valid until it changes,
+  /// which rebuilds), for what the SH cannot carry: the sky just below a
+  /// bounded plane's horizon (PlaneLightMap::SetSky).
+  const EnvironmentMap* Environment = nullptr;
   /// Planes carried by the light: L times the planes' steps and the planes'
   /// visibility (n^2); otherwise LightAbovePlanes is L and the visibility 0.
   bool PlanesInLight = false;
@@ -131,8 +135,11 @@ public:
   virtual void SetSettings(vtkPGIGISettings* settings);
   vtkGetObjectMacro(Settings, vtkPGIGISettings);
 
-  /// Infinite planes blocking the half-space beneath them; albedo for the bounce.
-  void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
+  /// Infinite planes blocking the half-space beneath them; albedo for the
+  /// bounce. With half edges e1, e2 (in the plane) the plane reflects from
+  /// origin + a e1 + b e2, |a|, |b| <= 1, only (Blockers::PlaneExtent).
+  void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3],
+    const double* halfEdges = nullptr);
   void RemoveAllBlockerPlanes();
   int GetNumberOfBlockerPlanes() const { return static_cast<int>(this->Planes.size() / 9); }
   /// origin, normal, albedo: 9 values per plane, as given.
@@ -185,6 +192,7 @@ protected:
   vtkPGILighting* Lighting = nullptr;
   vtkPGIGISettings* Settings = nullptr;
   std::vector<double> Planes;
+  std::vector<double> PlaneExtents; // 6 per plane, 0: unbounded
   proxygi::BakedScene Scene;
   std::string Error, ProxyError;
   int NumberOfBuilds = 0;

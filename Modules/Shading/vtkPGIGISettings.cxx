@@ -96,6 +96,7 @@ void vtkPGIGISettings::DeepCopy(vtkPGIGISettings* o)
   this->SetIndirectOperator(o->IndirectOperator);
   this->SetSphericalLightBlocking(o->SphericalLightBlocking);
   this->SetPlaneBounceShadows(o->PlaneBounceShadows);
+  this->SetPlaneBounceDirections(o->PlaneBounceDirections);
   this->SetPlaneBlocking(o->PlaneBlocking);
   this->SetLocalLights(o->LocalLights);
   this->SetLightCloud(o->LightCloud);
@@ -240,6 +241,16 @@ bool vtkPGIGISettings::Resolve(const Support& s, int planes, vtkPGIGISettings* e
     note("PlaneBounceShadows", "the planes' bounce is not dimmed by the proxies' shadows");
     e->SetPlaneBounceShadows(false);
   }
+  if (!s.PlaneBounceDirections && e->PlaneBounceDirections != 0)
+  {
+    // Noted only when set away from its default: the backend's plan says
+    // it samples one plane point.
+    if (e->Indirect && e->PlaneBounceShadows && planes > 0 && this->PlaneBounceDirections != 64)
+    {
+      note("PlaneBounceDirections", "the planes' shadowed light is sampled at one point");
+    }
+    e->SetPlaneBounceDirections(0);
+  }
   if (!((s.PlaneBlockings >> this->PlaneBlocking) & 1u))
   {
     const int used = NearestIn(s.PlaneBlockings, this->PlaneBlocking, 2);
@@ -317,7 +328,8 @@ void vtkPGIGISettings::PrintSelf(ostream& os, vtkIndent indent)
   os << indent
      << "SphericalLightBlocking: " << SphericalLightBlockingName(this->SphericalLightBlocking)
      << "\n";
-  os << indent << "PlaneBounceShadows: " << this->PlaneBounceShadows << "\n";
+  os << indent << "PlaneBounceShadows: " << this->PlaneBounceShadows << " ("
+     << this->PlaneBounceDirections << " directions)\n";
   os << indent << "PlaneBlocking: " << PlaneBlockingName(this->PlaneBlocking) << "\n";
   os << indent << "LocalLights: " << this->LocalLights << "\n";
   os << indent << "LightCloud: " << this->LightCloud << "\n";

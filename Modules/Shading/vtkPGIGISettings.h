@@ -33,6 +33,7 @@
  * | IndirectOperator | AVERAGED | POINT_SAMPLED, AVERAGED (D(theta)), EXACT (M(theta)) |
  * | SphericalLightBlocking | PER_SPHERE | SHADOWED: lights block per sphere or per object |
  * | PlaneBounceShadows | on | planes reflect less where the proxies shadow them |
+ * | PlaneBounceDirections | 64 | planes' light averaged per receiver (pgiPlaneLightMap.h); CPU |
  * | PlaneBlocking | PLANES_IN_LIGHT | planes as steps in the light, or caps in log space |
  * | LocalLights | on | the lighting's spherical and point lights |
  * | LightCloud | on | point lights' indirect light from a light cloud (SetLocalLightTransfer) |
@@ -139,6 +140,11 @@ public:
   vtkSetMacro(PlaneBounceShadows, bool);
   vtkGetMacro(PlaneBounceShadows, bool);
   vtkBooleanMacro(PlaneBounceShadows, bool);
+  /// With PlaneBounceShadows: how many directions each receiver averages
+  /// the planes' shadowed light over (a grid of it per update,
+  /// pgiPlaneLightMap.h); 0: the one plane point along n - m.
+  vtkSetClampMacro(PlaneBounceDirections, int, 0, 1024);
+  vtkGetMacro(PlaneBounceDirections, int);
   vtkSetClampMacro(PlaneBlocking, int, PLANES_IN_LIGHT, PLANES_IN_LOG_SPACE);
   vtkGetMacro(PlaneBlocking, int);
   vtkSetMacro(LocalLights, bool);
@@ -204,6 +210,7 @@ public:
     unsigned IndirectOperators = 0x7;
     bool SphericalLightBlocking = true;
     bool PlaneBounceShadows = true;
+    bool PlaneBounceDirections = true; // false: one plane point per receiver
     unsigned PlaneBlockings = 0x3;
     bool LocalLights = true;
     bool LightCloud = true;     // a vtkPGILocalLightTransfer for the point lights
@@ -249,6 +256,7 @@ protected:
   int IndirectOperator = INDIRECT_AVERAGED;
   int SphericalLightBlocking = BLOCKING_PER_SPHERE;
   bool PlaneBounceShadows = true;
+  int PlaneBounceDirections = 64;
   int PlaneBlocking = PLANES_IN_LIGHT;
   bool LocalLights = true;
   bool LightCloud = true;

@@ -7,6 +7,7 @@
 #include "pgiIndirectLight.h"
 #include "pgiMaterial.h"
 #include "pgiParallel.h"
+#include "pgiPlaneLightMap.h"
 #include "pgiSHBatch.h"
 #include "pgiSHLightTables.h"
 #include "pgiSHRotation.h"
@@ -154,7 +155,7 @@ struct ShadeScratch
   std::vector<std::vector<proxygi::SeenBlocker>> Seen, BatchSeen;
   proxygi::SphericalLightScratch Lights;
   std::vector<float> Points, Facing, BatchPoints, BatchFacing, Visibilities, BatchVisibilities,
-    PlaneScales;
+    PlaneScales, PlaneGaps;
   std::vector<proxygi::sh::Status> Statuses, BatchStatuses;
   std::vector<int> Used, BatchUsed;
   std::vector<vtkIdType> ByBlockers, Who;
@@ -399,7 +400,91 @@ SelfVisibilityInput FindSelfVisibility(vtkPolyData* receivers, bool wanted, int 
 struct vtkPGIGlobalIllumination::ShadeBuffers
 {
   vtkSMPThreadLocal<ShadeScratch> PerThread;
+  std::vector<proxygi::PlaneLightMap> PlaneMaps; // one per blocker plane
 };
+
+namespace
+{
+// The cells of a plane light map along its longer side.
+constexpr int PlaneMapResolution = 128;
+
+// What shades the planes' light maps: the proxies' visibility at each grid
+// point (the receivers' kernel, every leaf proxy) and the bright lights'
+// shadows there, blended as PlaneShadowScale and BrightLightsOnPlane do.
+struct PlaneMapShading
+{
+  const proxygi::BakedScene* Scene = nullptr;
+  const proxygi::SoftShadows* Shadows = nullptr;
+  const proxygi::BrightLightSet* Bright = nullptr; // null: no bright lights
+  const vtkPGIOccluder* Occluder = nullptr;        // null: the proxies' cones
+  float RayOffset = 0.0f, MinAngle = 0.0f;
+  bool ShadowsOn = true;
+};
+
+void FillPlaneLightMap(proxygi::PlaneLightMap& map, int plane, const PlaneMapShading& how,
+  vtkSMPThreadLocal<ShadeScratch>& perThread)
+{
+  const proxygi::BakedScene& b = *how.Scene;
+  const proxygi::Blockers& blockers = b.SceneBlockers;
+  const float* m = &blockers.PlaneNormal[3 * plane];
+  const int n2 = b.Order * b.Order;
+  float residual[3];
+  b.OpenShading->ShadeUnshadowed(m, residual);
+  float* scales = map.Scales();
+  vtkSMPTools::For(0, map.GetNumberOfPoints(), 256,
+    [&](vtkIdType first, vtkIdType last)
+    {
+      ShadeScratch& buffers = perThread.Local();
+      const int count = static_cast<int>(last - first);
+      buffers.BatchPoints.resize(3 * count);
+      buffers.BatchFacing.resize(3 * count);
+      buffers.BatchVisibilities.resize(static_cast<std::size_t>(n2) * count);
+      buffers.BatchStatuses.resize(count);
+      buffers.BatchUsed.resize(count);
+      for (int j = 0; j < count; ++j)
+      {
+        map.Point(static_cast<int>(first) + j, &buffers.BatchPoints[3 * j]);
+        std::copy_n(m, 3, &buffers.BatchFacing[3 * j]);
+      }
+      how.Shadows->VisibilityBatch(count, buffers.BatchPoints.data(), buffers.BatchFacing.data(),
+        blockers, buffers.BatchVisibilities.data(), buffers.BatchStatuses.data(),
+        buffers.BatchUsed.data());
+      for (int j = 0; j < count; ++j)
+      {
+        float* scale = &scales[3 * (first + j)];
+        proxygi::PlaneShadowScaleAt(*b.OpenShading, m, &buffers.BatchVisibilities[n2 * j],
+          buffers.BatchUsed[j], buffers.BatchStatuses[j], scale);
+        if (!how.Bright)
+        {
+          continue;
+        }
+        // The bright lights' share: lit over unshadowed, weighed against the
+        // residual's by their light on the plane.
+        const float* q = &buffers.BatchPoints[3 * j];
+        float lit[3] = { 0, 0, 0 }, open[3] = { 0, 0, 0 };
+        if (how.Occluder)
+        {
+          proxygi::BrightLightsFromRays(
+            *how.Bright, blockers, *how.Occluder, q, m, how.RayOffset, buffers.Bright, lit);
+        }
+        else
+        {
+          proxygi::BrightLightsFromProxies(
+            *how.Bright, blockers, q, m, how.MinAngle, how.ShadowsOn, lit);
+        }
+        proxygi::BrightLightsFromProxies(*how.Bright, blockers, q, m, how.MinAngle, false, open);
+        for (int c = 0; c < 3; ++c)
+        {
+          const float whole = residual[c] + open[c];
+          if (whole > 0.0f)
+          {
+            scale[c] = std::min(1.0f, (residual[c] * scale[c] + lit[c]) / whole);
+          }
+        }
+      }
+    });
+}
+} // namespace
 
 // Receiver clusters and their hierarchy cuts (one blocker list each), and
 // the clustering they came from.
@@ -477,6 +562,15 @@ void vtkPGIGlobalIllumination::AddBlockerPlane(
   const double origin[3], const double normal[3], const double albedo[3])
 {
   this->Bake->AddBlockerPlane(origin, normal, albedo);
+  this->Modified();
+}
+
+void vtkPGIGlobalIllumination::AddBlockerPlane(const double origin[3], const double normal[3],
+  const double albedo[3], const double halfEdge1[3], const double halfEdge2[3])
+{
+  const double halfEdges[6] = { halfEdge1[0], halfEdge1[1], halfEdge1[2], halfEdge2[0],
+    halfEdge2[1], halfEdge2[2] };
+  this->Bake->AddBlockerPlane(origin, normal, albedo, halfEdges);
   this->Modified();
 }
 
@@ -951,6 +1045,57 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   vtkFloatArray* visibility = reuse(this->OutputArrays[5], "Visibility", n2);
   vtkFloatArray* indirectSelf = reuse(this->OutputArrays[6], "IndirectSelf", 3);
 
+  // The planes' shadowed light on grids, once per update, which each
+  // receiver then averages over its view of the plane (pgiPlaneLightMap.h);
+  // PlaneBounceDirections 0: one plane point per receiver below.
+  const int planes = static_cast<int>(blockers.Planes());
+  const bool scalePlanes =
+    (runIndirect || runPlaneBounce) && planeBounceShadows && planes > 0 && planes <= 8;
+  const int planeDirections = settings->GetPlaneBounceDirections();
+  const bool planeMaps = scalePlanes && needVisibility && planeDirections > 0;
+  std::vector<proxygi::PlaneLightMap>& maps = this->Scratch->PlaneMaps;
+  if (planeMaps)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    PlaneMapShading how;
+    how.Scene = &b;
+    how.Shadows = &shadows;
+    how.Bright = b.RunBrightLights ? &bright : nullptr;
+    how.Occluder = brightRays ? this->Occluder : nullptr;
+    how.RayOffset = rayOffset;
+    how.MinAngle = static_cast<float>(settings->GetMinBlockerAngle());
+    how.ShadowsOn = shadowsOn;
+    maps.resize(planes);
+    const std::vector<proxygi::DistantLight> none;
+    int points = 0;
+    for (int k = 0; k < planes; ++k)
+    {
+      maps[k].Layout(blockers, k, b.RunBrightLights ? b.BrightLights : none, PlaneMapResolution,
+        planeDirections, order);
+      if (b.Environment)
+      {
+        maps[k].SetSky(*b.Environment);
+      }
+      FillPlaneLightMap(maps[k], k, how, this->Scratch->PerThread);
+      points += maps[k].GetNumberOfPoints();
+    }
+    std::ostringstream line;
+    line << "planes' bounce: the shadowed light of " << planes << " plane(s) on " << points
+         << " grid points" << (how.Bright ? " (bright lights included)" : "") << ", averaged over "
+         << planeDirections << " directions per receiver ("
+         << 1e-6 *
+        static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+          std::chrono::steady_clock::now() - start)
+                              .count())
+         << " ms)";
+    this->Plan.push_back(line.str());
+  }
+  else if (scalePlanes && needVisibility)
+  {
+    this->Plan.push_back("planes' bounce: the shadowed light at one plane point per receiver "
+                         "(PlaneBounceDirections 0)");
+  }
+
   std::atomic<vtkIdType> shadowed(0), failures(0), shadowedFailures(0);
   std::atomic<long long> secondPassNs(0), visibilityNs(0);
   // Progress and abort between blocks; a block of at least 4096 receivers
@@ -975,7 +1120,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
         std::vector<float>&points = buffers.Points, &facing = buffers.Facing,
         &batchPoints = buffers.BatchPoints, &batchFacing = buffers.BatchFacing,
         &visibilities = buffers.Visibilities, &batchVisibilities = buffers.BatchVisibilities,
-        &planeScales = buffers.PlaneScales;
+        &planeScales = buffers.PlaneScales, &planeGaps = buffers.PlaneGaps;
         std::vector<proxygi::sh::Status>&statuses = buffers.Statuses,
         &batchStatuses = buffers.BatchStatuses;
         std::vector<int>&used = buffers.Used, &batchUsed = buffers.BatchUsed;
@@ -1072,13 +1217,30 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             }
           }
         }
-        // The planes' shadow scales (PlaneShadowScale), their visibilities
-        // batched the same way: one plane point per receiver and plane.
-        const int planes = static_cast<int>(blockers.Planes());
-        const bool scalePlanes =
-          (runIndirect || runPlaneBounce) && planeBounceShadows && planes > 0 && planes <= 8;
+        // The planes' shadow scales: averaged over the planes' light maps,
+        // or (PlaneShadowScale) one plane point per receiver and plane, their
+        // visibilities batched the same way.
         planeScales.clear();
-        if (scalePlanes && needVisibility)
+        if (planeMaps)
+        {
+          // Receivers whose light carries the one plane have a visibility
+          // without it: the plane is seen past it (planesSeenPast), and the
+          // sky past its edges is theirs (PlaneGaps, added to the direct light).
+          planeScales.resize(3 * static_cast<std::size_t>(planes) * count);
+          planeGaps.assign(3 * static_cast<std::size_t>(count), 0.0f);
+          for (vtkIdType j = 0; j < count; ++j)
+          {
+            const bool past = planes == 1 && key[j] % 2 == 1;
+            const bool failed = statuses[j] != proxygi::sh::Status::Ok;
+            const float* g = past && used[j] > 0 && !failed ? &visibilities[n2 * j] : nullptr;
+            for (int k = 0; k < planes; ++k)
+            {
+              maps[k].Scale(&points[3 * j], &facing[3 * j], &planeScales[3 * (j * planes + k)], g,
+                past && runShadows ? &planeGaps[3 * j] : nullptr);
+            }
+          }
+        }
+        else if (scalePlanes && needVisibility)
         {
           planeScales.assign(3 * static_cast<std::size_t>(planes) * count, 1.0f);
           for (int k = 0; k < planes; ++k)
@@ -1120,7 +1282,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
         // The bright lights' part of the planes' light, sampled where each
         // receiver sees the plane: the residual's scale and theirs, blended
         // by their shares of the plane's light.
-        if (scalePlanes && b.RunBrightLights)
+        if (scalePlanes && b.RunBrightLights && !planeMaps)
         {
           if (planeScales.empty())
           {
@@ -1188,6 +1350,14 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
           if (runShadows)
           {
             (lightCarriesPlanes ? shading : openShading).Shade(nf, g, rgb);
+            if (planeMaps)
+            {
+              // The environment past a bounded plane's edges (PlaneLightMap::Scale).
+              for (int c = 0; c < 3; ++c)
+              {
+                rgb[c] += planeGaps[3 * j + c];
+              }
+            }
           }
           else
           {
@@ -1214,8 +1384,10 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
           if (runIndirect || runPlaneBounce)
           {
             // xi needs the coverage of everything seen, planes included.
+            // With the plane seen past the visibility, xi is the spheres' alone.
+            const bool seenPast = planeMaps && planes == 1 && lightCarriesPlanes;
             float dc = g[0];
-            if (lightCarriesPlanes)
+            if (lightCarriesPlanes && !seenPast)
             {
               double sum = 0.0;
               for (int k = 0; k < n2; ++k)
@@ -1228,7 +1400,8 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             const bool scaled = scalePlanes && !planeScales.empty();
             proxygi::IndirectExitRadiance(indirectOperator, secondary, mine, seen, dc, nf,
               runIndirect ? bounce : planeBounce, scaled ? &planeScales[3 * j * planes] : nullptr,
-              !runIndirect, self.OwnObject(i)); // the own object's bounce: IndirectSelf
+              !runIndirect, self.OwnObject(i), // the own object's bounce: IndirectSelf
+              seenPast);
           }
           const proxygi::SphericalLights& myLights =
             cl.Lights.empty() ? shadowedLeaves : cl.Lights[cl.Of[i]];

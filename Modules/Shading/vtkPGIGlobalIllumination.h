@@ -7,10 +7,16 @@
  * computed). Input 1 (optional): the proxies, points with a "Radius" array
  * (vtkPGISphereSetApproximation's output or any such polydata). Light: a
  * vtkPGILighting (its environment is projected to SH once per change).
- * Infinite blocker planes (a ground) can be added with AddBlockerPlane.
+ * Infinite blocker planes (a ground) can be added with AddBlockerPlane,
+ * bounded to a parallelogram for what they reflect (a finite ground). Their
+ * bounce averages their shadowed light, tabulated once per update, over
+ * each receiver's view of them (settings PlaneBounceDirections,
+ * pgiPlaneLightMap.h); past a bounded plane's edges the receivers see the
+ * environment below its horizon (in DirectShadowed).
  *
  * Output: the receivers with point arrays (3 floats each unless said):
- *  - DirectShadowed: environment light through SH soft shadows (exit radiance);
+ *  - DirectShadowed: environment light through SH soft shadows (exit radiance),
+ *    the sky past a bounded plane's edges included;
  *  - IndirectProxy: one bounce from the proxies and blocker planes as
  *    secondary lights (unshadowed, Sloan 2007);
  *  - IndirectShadowed: one bounce from the proxies as spherical lights,
@@ -143,6 +149,15 @@ public:
   /// an albedo they also reflect light (indirect).
   void AddBlockerPlane(const double origin[3], const double normal[3]);
   void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
+  /**
+   * A plane of finite extent, the parallelogram origin + a e1 + b e2 with
+   * |a|, |b| <= 1 (e1, e2 its half edges, in the plane): it still blocks as
+   * the infinite plane, but with PlaneBounceDirections > 0 it reflects from
+   * that area only and past its edges the receivers see the environment
+   * below its horizon, as they would over a finite ground.
+   */
+  void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3],
+    const double halfEdge1[3], const double halfEdge2[3]);
   /// The same with plain numbers: origin, normal, albedo (ParaView).
   void AddBlockerPlane(double ox, double oy, double oz, double nx, double ny, double nz, double ar,
     double ag, double ab);

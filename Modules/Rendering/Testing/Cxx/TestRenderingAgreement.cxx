@@ -169,6 +169,8 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
     gi->GetSettings()->SetSphericalLightBlocking(
       c.PerObject ? vtkPGIGISettings::BLOCKING_PER_OBJECT : vtkPGIGISettings::BLOCKING_PER_SPHERE);
     gi->GetSettings()->SetPlaneBounceShadows(c.PlaneBounceShadows);
+    // The mapper samples the planes' light at one point (its twin).
+    gi->GetSettings()->SetPlaneBounceDirections(0);
     gi->GetSettings()->SetLocalLights(local);
     gi->GetSettings()->SetShadingPath(path);
     if (c.PlaneBlocking != vtkPGIGISettings::PLANES_IN_LIGHT)

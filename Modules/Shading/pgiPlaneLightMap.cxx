@@ -1,0 +1,326 @@
+#include "pgiPlaneLightMap.h"
+
+#include "pgiSHBasis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace proxygi
+{
+
+namespace
+{
+float Dot(const float a[3], const float b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+}
+
+void PlaneLightMap::Layout(const Blockers& blockers, int plane,
+  const std::vector<DistantLight>& lights, int resolution, int directions, int order)
+{
+  std::copy_n(&blockers.PlaneOrigin[3 * plane], 3, this->Origin);
+  std::copy_n(&blockers.PlaneNormal[3 * plane], 3, this->Normal);
+  const double m[3] = { this->Normal[0], this->Normal[1], this->Normal[2] };
+  double u[3], v[3];
+  FrameAbout(m, u, v);
+  for (int c = 0; c < 3; ++c)
+  {
+    this->U[c] = static_cast<float>(u[c]);
+    this->V[c] = static_cast<float>(v[c]);
+  }
+
+  // The look-up directions: uniform in solid angle over the half-space below
+  // the plane (a spherical Fibonacci spiral), fixed in the plane's frame.
+  const int count = std::max(0, directions);
+  this->Directions.resize(3 * static_cast<std::size_t>(count));
+  this->StepU.resize(count);
+  this->StepV.resize(count);
+  this->Coefficients = order * order;
+  this->Basis.resize(static_cast<std::size_t>(this->Coefficients) * count);
+  const double golden = (1.0 + std::sqrt(5.0)) / 2.0, pi = 3.14159265358979323846;
+  for (int k = 0; k < count; ++k)
+  {
+    const double down = (k + 0.5) / count, side = std::sqrt(std::max(0.0, 1.0 - down * down));
+    const double phi = 2.0 * pi * k / golden;
+    const double a = side * std::cos(phi), b = side * std::sin(phi);
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Directions[3 * k + c] = static_cast<float>(a * u[c] + b * v[c] - down * m[c]);
+    }
+    this->StepU[k] = static_cast<float>(a / down);
+    this->StepV[k] = static_cast<float>(b / down);
+    if (order > 0)
+    {
+      const float* w = &this->Directions[3 * k];
+      sh::EvaluateBasis(order, w[0], w[1], w[2], &this->Basis[this->Coefficients * k]);
+    }
+  }
+
+  this->Sky.assign(3 * static_cast<std::size_t>(count), 0.0f);
+
+  // The extent: extent coordinates (a, b) of plane coordinates (x, y) are
+  // (x, y) . Dual1 and . Dual2, the inverse of [e1 e2] in (U, V).
+  const float* e = &blockers.PlaneExtent[6 * plane];
+  const double e1[2] = { e[0] * u[0] + e[1] * u[1] + e[2] * u[2],
+    e[0] * v[0] + e[1] * v[1] + e[2] * v[2] };
+  const double e2[2] = { e[3] * u[0] + e[4] * u[1] + e[5] * u[2],
+    e[3] * v[0] + e[4] * v[1] + e[5] * v[2] };
+  const double det = e1[0] * e2[1] - e1[1] * e2[0];
+  const double size = std::max(std::hypot(e1[0], e1[1]), std::hypot(e2[0], e2[1]));
+  this->Bounded = std::isfinite(det) && std::abs(det) > 1e-12 * size * size && size > 0.0;
+  if (this->Bounded)
+  {
+    this->Dual1[0] = static_cast<float>(e2[1] / det);
+    this->Dual1[1] = static_cast<float>(-e2[0] / det);
+    this->Dual2[0] = static_cast<float>(-e1[1] / det);
+    this->Dual2[1] = static_cast<float>(e1[0] / det);
+  }
+
+  // The region the spheres can darken, in plane coordinates.
+  double lo[2] = { std::numeric_limits<double>::max(), std::numeric_limits<double>::max() };
+  double hi[2] = { -lo[0], -lo[1] };
+  const auto include = [&](double cu, double cv, double reach)
+  {
+    lo[0] = std::min(lo[0], cu - reach);
+    lo[1] = std::min(lo[1], cv - reach);
+    hi[0] = std::max(hi[0], cu + reach);
+    hi[1] = std::max(hi[1], cv + reach);
+  };
+  for (std::size_t i = 0; i < blockers.Spheres(); ++i)
+  {
+    const double d[3] = { blockers.X[i] - this->Origin[0], blockers.Y[i] - this->Origin[1],
+      blockers.Z[i] - this->Origin[2] };
+    const double h = d[0] * m[0] + d[1] * m[1] + d[2] * m[2], r = blockers.R[i];
+    const double top = h + r;
+    if (!(top > 0.0) || !std::isfinite(top))
+    {
+      continue;
+    }
+    const double cu = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+    const double cv = d[0] * v[0] + d[1] * v[1] + d[2] * v[2];
+    include(cu, cv, r + 2.5 * top);
+    for (const DistantLight& light : lights)
+    {
+      const double* w = light.Direction;
+      const double rise = w[0] * m[0] + w[1] * m[1] + w[2] * m[2];
+      if (!(rise > 0.0))
+      {
+        continue; // below the horizon: it lights nothing on the plane
+      }
+      // The sphere's shadow: its centre moved away from the light by h / rise
+      // along the light's tangential part, stretched by 1 / rise (at most 20).
+      const double stretch = std::min(1.0 / rise, 20.0);
+      const double wu = w[0] * u[0] + w[1] * u[1] + w[2] * u[2];
+      const double wv = w[0] * v[0] + w[1] * v[1] + w[2] * v[2];
+      const double along = std::max(0.0, h) * stretch;
+      include(cu - along * wu, cv - along * wv, r * stretch + r);
+    }
+  }
+  if (this->Bounded)
+  {
+    // No light is reflected off the extent: the grid need not reach past it.
+    const double reach[2] = { std::abs(e1[0]) + std::abs(e2[0]),
+      std::abs(e1[1]) + std::abs(e2[1]) };
+    for (int c = 0; c < 2; ++c)
+    {
+      lo[c] = std::max(lo[c], -reach[c]);
+      hi[c] = std::min(hi[c], reach[c]);
+    }
+  }
+  if (!(hi[0] > lo[0]) || !(hi[1] > lo[1]))
+  {
+    this->Columns = this->Rows = 0;
+    this->S.clear();
+    return;
+  }
+  const int cells = std::max(1, resolution);
+  this->Cell = static_cast<float>(std::max(hi[0] - lo[0], hi[1] - lo[1]) / cells);
+  this->U0 = static_cast<float>(lo[0]);
+  this->V0 = static_cast<float>(lo[1]);
+  this->Columns = 2 + static_cast<int>((hi[0] - lo[0]) / this->Cell);
+  this->Rows = 2 + static_cast<int>((hi[1] - lo[1]) / this->Cell);
+  this->S.assign(3 * static_cast<std::size_t>(this->Columns) * this->Rows, 1.0f);
+}
+
+void PlaneLightMap::Point(int i, float q[3]) const
+{
+  const int column = i % this->Columns, row = i / this->Columns;
+  const float a = this->U0 + this->Cell * static_cast<float>(column);
+  const float b = this->V0 + this->Cell * static_cast<float>(row);
+  for (int c = 0; c < 3; ++c)
+  {
+    q[c] = this->Origin[c] + a * this->U[c] + b * this->V[c];
+  }
+}
+
+namespace
+{
+// Bilinear s at grid coordinates (fu, fv); 1 outside.
+inline void Bilinear(const float* grid, int columns, int rows, float fu, float fv, float s[3])
+{
+  if (!(fu >= 0.0f) || !(fv >= 0.0f) || !(fu < static_cast<float>(columns - 1)) ||
+    !(fv < static_cast<float>(rows - 1)))
+  {
+    s[0] = s[1] = s[2] = 1.0f;
+    return;
+  }
+  const int i = static_cast<int>(fu), j = static_cast<int>(fv);
+  const float a = fu - static_cast<float>(i), b = fv - static_cast<float>(j);
+  const float* p00 = &grid[3 * (static_cast<std::size_t>(j) * columns + i)];
+  const float* p10 = p00 + 3;
+  const float* p01 = p00 + 3 * static_cast<std::size_t>(columns);
+  const float* p11 = p01 + 3;
+  for (int c = 0; c < 3; ++c)
+  {
+    const float bottom = p00[c] + a * (p10[c] - p00[c]);
+    const float top = p01[c] + a * (p11[c] - p01[c]);
+    s[c] = bottom + b * (top - bottom);
+  }
+}
+}
+
+void PlaneLightMap::SetSky(const EnvironmentMap& map)
+{
+  // Each direction stands for 2 pi / K of the half-space: a cone of that
+  // solid angle about it, sampled on a Fibonacci spiral of equal areas.
+  const int count = static_cast<int>(this->StepU.size()), samples = 16;
+  if (count == 0)
+  {
+    return;
+  }
+  const double pi = 3.14159265358979323846, golden = (1.0 + std::sqrt(5.0)) / 2.0;
+  const double cosCone = 1.0 - 1.0 / count; // 2 pi (1 - cos) = 2 pi / K
+  for (int k = 0; k < count; ++k)
+  {
+    const double w[3] = { this->Directions[3 * k], this->Directions[3 * k + 1],
+      this->Directions[3 * k + 2] };
+    double a[3], b[3];
+    FrameAbout(w, a, b);
+    double sum[3] = { 0, 0, 0 };
+    for (int q = 0; q < samples; ++q)
+    {
+      const double z = 1.0 - (1.0 - cosCone) * (q + 0.5) / samples;
+      const double r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * pi * q / golden;
+      double d[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        d[c] = z * w[c] + r * (std::cos(phi) * a[c] + std::sin(phi) * b[c]);
+      }
+      float rgb[3];
+      map.Lookup(d, rgb);
+      for (int c = 0; c < 3; ++c)
+      {
+        sum[c] += rgb[c];
+      }
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Sky[3 * k + c] = static_cast<float>(sum[c] / samples);
+    }
+  }
+}
+
+namespace
+{
+inline bool InExtent(const float dual1[2], const float dual2[2], float x, float y)
+{
+  const float a = x * dual1[0] + y * dual1[1], b = x * dual2[0] + y * dual2[1];
+  return std::abs(a) <= 1.0f && std::abs(b) <= 1.0f;
+}
+}
+
+bool PlaneLightMap::Inside(const float x[3]) const
+{
+  const float d[3] = { x[0] - this->Origin[0], x[1] - this->Origin[1], x[2] - this->Origin[2] };
+  return !this->Bounded || InExtent(this->Dual1, this->Dual2, Dot(d, this->U), Dot(d, this->V));
+}
+
+void PlaneLightMap::Lookup(const float x[3], float s[3]) const
+{
+  const float d[3] = { x[0] - this->Origin[0], x[1] - this->Origin[1], x[2] - this->Origin[2] };
+  if (this->S.empty())
+  {
+    s[0] = s[1] = s[2] = 1.0f;
+    return;
+  }
+  Bilinear(this->S.data(), this->Columns, this->Rows, (Dot(d, this->U) - this->U0) / this->Cell,
+    (Dot(d, this->V) - this->V0) / this->Cell, s);
+}
+
+bool PlaneLightMap::Scale(
+  const float p[3], const float n[3], float scale[3], const float* g, float gap[3]) const
+{
+  scale[0] = scale[1] = scale[2] = 1.0f;
+  if (gap)
+  {
+    gap[0] = gap[1] = gap[2] = 0.0f;
+  }
+  const float d[3] = { p[0] - this->Origin[0], p[1] - this->Origin[1], p[2] - this->Origin[2] };
+  const float h = Dot(d, this->Normal);
+  if (!(h > 0.0f))
+  {
+    return false;
+  }
+  // The receiver's foot in plane coordinates, and in grid cells.
+  const float x = Dot(d, this->U), y = Dot(d, this->V);
+  const float inv = 1.0f / this->Cell;
+  const float fu = (x - this->U0) * inv, fv = (y - this->V0) * inv, hu = h * inv;
+  const bool empty = this->S.empty();
+  float sum[3] = { 0, 0, 0 }, sky[3] = { 0, 0, 0 }, weights = 0.0f;
+  const int count = static_cast<int>(this->StepU.size());
+  for (int k = 0; k < count; ++k)
+  {
+    const float c = Dot(n, &this->Directions[3 * k]);
+    if (!(c > 0.0f))
+    {
+      continue;
+    }
+    weights += c;
+    float seen = c;
+    if (g)
+    {
+      const float* yk = &this->Basis[this->Coefficients * k];
+      float v = 0.0f;
+      for (int i = 0; i < this->Coefficients; ++i)
+      {
+        v += g[i] * yk[i];
+      }
+      seen *= std::min(1.0f, std::max(0.0f, v));
+    }
+    const float su = this->StepU[k], sv = this->StepV[k];
+    if (this->Bounded && !InExtent(this->Dual1, this->Dual2, x + h * su, y + h * sv))
+    {
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        sky[ch] += seen * this->Sky[3 * k + ch];
+      }
+      continue;
+    }
+    float s[3] = { 1.0f, 1.0f, 1.0f };
+    if (!empty)
+    {
+      Bilinear(this->S.data(), this->Columns, this->Rows, fu + hu * su, fv + hu * sv, s);
+    }
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      sum[ch] += seen * s[ch];
+    }
+  }
+  if (!(weights > 0.0f))
+  {
+    return false;
+  }
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    scale[ch] = std::min(1.0f, std::max(0.0f, sum[ch] / weights));
+    if (gap)
+    {
+      gap[ch] = 2.0f * sky[ch] / static_cast<float>(count);
+    }
+  }
+  return true;
+}
+
+} // namespace proxygi

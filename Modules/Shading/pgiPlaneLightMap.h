@@ -1,0 +1,120 @@
+/**
+ * @file pgiPlaneLightMap.h
+ * @brief The light a blocker plane reflects where the proxies (and the
+ * bright lights' shadows) dim it, on a grid, and its mean over the part of
+ * the plane a receiver sees.
+ *
+ * A ground lit by the environment reflects albedo/pi E(x), with E dimmed
+ * under the objects. A receiver above it gathers
+ *   int_{w meets the plane} L(x(w)) max(n.w, 0) dw,
+ * so the factor the plane's uniform light is scaled by (PlaneShadowScale's
+ * meaning) is the mean of s(x) = E(x) / E_open over the directions that meet
+ * the plane, weighted by max(n.w, 0). One plane point per receiver (the one
+ * along n - m) takes the darkest spot under an object for the whole view and
+ * leaves the objects' undersides far too dark; this map averages instead.
+ *
+ * s is tabulated once per update on a grid over the region the proxies can
+ * shadow: their footprints widened by 2.5 times their height above the plane
+ * (an environment's shadow of a sphere fades as its solid angle; at that
+ * distance it is below 1%), stretched along each bright light's shadow
+ * (at most 20 heights). Outside the grid s = 1. A receiver averages
+ * `directions` bilinear look-ups along uniform directions over the
+ * half-space below the plane, fixed in the plane's frame, so the result is
+ * continuous in the receiver's position and normal.
+ *
+ * Given the receiver's visibility g (the other blockers and its own object,
+ * without the plane), each direction is also weighted by V(w) = g . y(w),
+ * clamped to [0, 1]: the plane seen past what stands in front of it, so the
+ * overlap normalisation need not guess it (IndirectExitRadiance's
+ * planesSeenPast). A receiver on a bunny's back whose view of the ground is
+ * its own body then gathers that body's bounce, not the ground's.
+ *
+ * A plane of finite extent (Blockers::PlaneExtent) reflects only inside it:
+ * a direction that meets the plane outside it sees the environment below
+ * the horizon instead, which the infinite plane blocks in the direct light;
+ * Scale returns that light too (the gap past the plane's edges), so a ground
+ * of 6 x 6 metres is not lit, nor lights, as an endless one.
+ */
+#ifndef pgiPlaneLightMap_h
+#define pgiPlaneLightMap_h
+
+#include "ProxyGIShadingModule.h"
+
+#include "pgiBrightLights.h"
+#include "pgiEnvironmentMap.h"
+#include "pgiSoftShadows.h"
+
+#include <vector>
+
+namespace proxygi
+{
+
+class PROXYGISHADING_EXPORT PlaneLightMap
+{
+public:
+  /**
+   * Lays the grid out on plane `plane` of `blockers` over the region its
+   * spheres (and `lights`' shadows of them) can darken, with at most
+   * `resolution` cells along its longer side, and sets `directions` look-up
+   * directions (with the SH basis of `order` at each, for Scale's g). s
+   * starts at 1 everywhere. A plane no sphere stands above gets an empty
+   * grid (Scale then gives 1).
+   */
+  void Layout(const Blockers& blockers, int plane, const std::vector<DistantLight>& lights,
+    int resolution, int directions, int order);
+
+  int GetNumberOfPoints() const { return this->Columns * this->Rows; }
+  int GetColumns() const { return this->Columns; }
+  int GetRows() const { return this->Rows; }
+  /// Grid point i (row-major), on the plane.
+  void Point(int i, float q[3]) const;
+  /// s at the grid points, 3 floats (RGB) each, to be filled in [0, 1].
+  float* Scales() { return this->S.data(); }
+  const float* Scales() const { return this->S.data(); }
+
+  /// s at plane point x (bilinear; 1 outside the grid).
+  void Lookup(const float x[3], float s[3]) const;
+
+  /// The environment below the horizon along each look-up direction (its
+  /// mean over the direction's share of the half-space, 16 samples of the
+  /// map; order-4 SH would smear the bright sky across the horizon), for
+  /// the gap past a bounded plane's edges.
+  void SetSky(const EnvironmentMap& map);
+
+  /// Whether plane point x lies on the plane's extent (always if unbounded).
+  bool Inside(const float x[3]) const;
+
+  /**
+   * The scale of the plane's light a receiver at p (normal n, unit) sees:
+   * the sum of max(n.w, 0) s over the look-up directions over that of
+   * max(n.w, 0). With g (Layout's order^2 floats), each term of the first
+   * sum is also weighted by V(w). Directions that meet the plane off its
+   * extent add nothing to it; with `gap`, they add the sky's exit radiance
+   * (white receiver, (2/K) sum of max(n.w, 0) V(w) sky(w); SetSky) there. False
+   * (scale 1, gap 0) when the receiver is not above the plane or sees none
+   * of it.
+   */
+  bool Scale(const float p[3], const float n[3], float scale[3], const float* g = nullptr,
+    float gap[3] = nullptr) const;
+
+private:
+  float Origin[3] = { 0, 0, 0 }, Normal[3] = { 0, 0, 1 }, U[3] = { 1, 0, 0 }, V[3] = { 0, 1, 0 };
+  // The grid's first point in plane coordinates, its cell size, its size.
+  float U0 = 0, V0 = 0, Cell = 1;
+  int Columns = 0, Rows = 0;
+  std::vector<float> S;
+  // Per direction: the world direction and its step on the plane per unit
+  // height, (w.U, w.V) / (-w.m).
+  std::vector<float> Directions, StepU, StepV;
+  int Coefficients = 0;
+  std::vector<float> Basis; // Coefficients per direction
+  std::vector<float> Sky;   // RGB per direction
+  // A bounded plane: its half edges' dual vectors in (U, V), so that a
+  // point's extent coordinates are its plane coordinates dotted with them.
+  bool Bounded = false;
+  float Dual1[2] = { 0, 0 }, Dual2[2] = { 0, 0 };
+};
+
+} // namespace proxygi
+
+#endif
