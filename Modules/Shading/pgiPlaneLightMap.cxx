@@ -1,6 +1,13 @@
 #include "pgiPlaneLightMap.h"
 
+#include "pgiBrightLightShadows.h"
+#include "pgiEnvironmentShading.h"
+#include "pgiIndirectLight.h"
 #include "pgiSHBasis.h"
+#include "vtkPGIGIBake.h"
+
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cmath>
@@ -321,6 +328,102 @@ bool PlaneLightMap::Scale(
     }
   }
   return true;
+}
+
+namespace
+{
+// One thread's buffers for a range of grid points.
+struct FillScratch
+{
+  std::vector<float> Points, Normals, Visibilities;
+  std::vector<sh::Status> Statuses;
+  std::vector<int> Used;
+  BrightLightScratch Bright;
+};
+
+void FillPlaneLightMap(PlaneLightMap& map, int plane, const BakedScene& b,
+  const PlaneLightMapShading& how, vtkSMPThreadLocal<FillScratch>& perThread)
+{
+  const Blockers& blockers = b.SceneBlockers;
+  const float* m = &blockers.PlaneNormal[3 * plane];
+  const int n2 = b.Order * b.Order;
+  float residual[3];
+  b.OpenShading->ShadeUnshadowed(m, residual);
+  float* scales = map.Scales();
+  vtkSMPTools::For(0, map.GetNumberOfPoints(), 256,
+    [&](vtkIdType first, vtkIdType last)
+    {
+      FillScratch& buffers = perThread.Local();
+      const int count = static_cast<int>(last - first);
+      buffers.Points.resize(3 * count);
+      buffers.Normals.resize(3 * count);
+      buffers.Visibilities.resize(static_cast<std::size_t>(n2) * count);
+      buffers.Statuses.resize(count);
+      buffers.Used.resize(count);
+      for (int j = 0; j < count; ++j)
+      {
+        map.Point(static_cast<int>(first) + j, &buffers.Points[3 * j]);
+        std::copy_n(m, 3, &buffers.Normals[3 * j]);
+      }
+      how.Shadows->VisibilityBatch(count, buffers.Points.data(), buffers.Normals.data(), blockers,
+        buffers.Visibilities.data(), buffers.Statuses.data(), buffers.Used.data());
+      for (int j = 0; j < count; ++j)
+      {
+        float* scale = &scales[3 * (first + j)];
+        PlaneShadowScaleAt(*b.OpenShading, m, &buffers.Visibilities[n2 * j], buffers.Used[j],
+          buffers.Statuses[j], scale);
+        if (!how.Bright)
+        {
+          continue;
+        }
+        // The bright lights' share: lit over unshadowed, weighed against the
+        // residual's by their light on the plane.
+        const float* q = &buffers.Points[3 * j];
+        float lit[3] = { 0, 0, 0 }, open[3] = { 0, 0, 0 };
+        if (how.Occluder)
+        {
+          BrightLightsFromRays(
+            *how.Bright, blockers, *how.Occluder, q, m, how.RayOffset, buffers.Bright, lit);
+        }
+        else
+        {
+          BrightLightsFromProxies(*how.Bright, blockers, q, m, how.MinAngle, how.ShadowsOn, lit);
+        }
+        BrightLightsFromProxies(*how.Bright, blockers, q, m, how.MinAngle, false, open);
+        for (int c = 0; c < 3; ++c)
+        {
+          const float whole = residual[c] + open[c];
+          if (whole > 0.0f)
+          {
+            scale[c] = std::min(1.0f, (residual[c] * scale[c] + lit[c]) / whole);
+          }
+        }
+      }
+    });
+}
+} // namespace
+
+int BuildPlaneLightMaps(const BakedScene& scene, const PlaneLightMapShading& how, int directions,
+  std::vector<PlaneLightMap>& maps)
+{
+  const Blockers& blockers = scene.SceneBlockers;
+  const int planes = static_cast<int>(blockers.Planes());
+  const std::vector<DistantLight> none;
+  vtkSMPThreadLocal<FillScratch> perThread;
+  maps.resize(planes);
+  int points = 0;
+  for (int k = 0; k < planes; ++k)
+  {
+    maps[k].Layout(
+      blockers, k, how.Bright ? how.Bright->Lights : none, how.Resolution, directions, scene.Order);
+    if (scene.Environment)
+    {
+      maps[k].SetSky(*scene.Environment);
+    }
+    FillPlaneLightMap(maps[k], k, scene, how, perThread);
+    points += maps[k].GetNumberOfPoints();
+  }
+  return points;
 }
 
 } // namespace proxygi

@@ -46,8 +46,12 @@
 
 #include <vector>
 
+class vtkPGIOccluder;
+
 namespace proxygi
 {
+struct BakedScene;
+struct BrightLightSet;
 
 class PROXYGISHADING_EXPORT PlaneLightMap
 {
@@ -97,6 +101,27 @@ public:
   bool Scale(const float p[3], const float n[3], float scale[3], const float* g = nullptr,
     float gap[3] = nullptr) const;
 
+  // What the GPU mapper uploads (its GLSL twin, pgiPlaneLightScale).
+  const float* GetU() const { return this->U; }
+  const float* GetV() const { return this->V; }
+  /// U0, V0 (the grid's first point in plane coordinates) and the cell size.
+  void GetGrid(float& u0, float& v0, float& cell) const
+  {
+    u0 = this->U0;
+    v0 = this->V0;
+    cell = this->Cell;
+  }
+  bool GetBounded() const { return this->Bounded; }
+  const float* GetDual1() const { return this->Dual1; }
+  const float* GetDual2() const { return this->Dual2; }
+  int GetNumberOfDirections() const { return static_cast<int>(this->StepU.size()); }
+  /// Direction k's world vector, and its steps on the plane per unit height.
+  const float* GetDirection(int k) const { return &this->Directions[3 * k]; }
+  float GetStepU(int k) const { return this->StepU[k]; }
+  float GetStepV(int k) const { return this->StepV[k]; }
+  /// The sky below the horizon along direction k (SetSky), RGB.
+  const float* GetSky(int k) const { return &this->Sky[3 * k]; }
+
 private:
   float Origin[3] = { 0, 0, 0 }, Normal[3] = { 0, 0, 1 }, U[3] = { 1, 0, 0 }, V[3] = { 0, 1, 0 };
   // The grid's first point in plane coordinates, its cell size, its size.
@@ -114,6 +139,33 @@ private:
   bool Bounded = false;
   float Dual1[2] = { 0, 0 }, Dual2[2] = { 0, 0 };
 };
+
+/// What shades the planes' light maps (BuildPlaneLightMaps).
+struct PROXYGISHADING_EXPORT PlaneLightMapShading
+{
+  /// The receivers' kernel (planes carried by the light or not, as theirs).
+  const SoftShadows* Shadows = nullptr;
+  /// The bright lights taken out of the map (null: none) and their shadows'
+  /// route: rays through Occluder, else the proxies' cones.
+  const BrightLightSet* Bright = nullptr;
+  const vtkPGIOccluder* Occluder = nullptr;
+  float RayOffset = 0.0f, MinAngle = 0.0f;
+  bool ShadowsOn = true;
+  /// Cells along a grid's longer side.
+  int Resolution = 128;
+};
+
+/**
+ * One map per blocker plane of `scene`, laid out and filled: the proxies'
+ * visibility at each grid point (every leaf sphere, the plane's normal) and
+ * the bright lights' shadows there, blended by their shares of the plane's
+ * light (as PlaneShadowScale and BrightLightsOnPlane do per receiver), and
+ * the sky below the horizon along `directions` look-up directions. Threaded
+ * (vtkSMPTools). Returns the grid points of all maps. The CPU filter and
+ * the GPU mapper (which uploads them) share it.
+ */
+PROXYGISHADING_EXPORT int BuildPlaneLightMaps(const BakedScene& scene,
+  const PlaneLightMapShading& how, int directions, std::vector<PlaneLightMap>& maps);
 
 } // namespace proxygi
 

@@ -403,89 +403,6 @@ struct vtkPGIGlobalIllumination::ShadeBuffers
   std::vector<proxygi::PlaneLightMap> PlaneMaps; // one per blocker plane
 };
 
-namespace
-{
-// The cells of a plane light map along its longer side.
-constexpr int PlaneMapResolution = 128;
-
-// What shades the planes' light maps: the proxies' visibility at each grid
-// point (the receivers' kernel, every leaf proxy) and the bright lights'
-// shadows there, blended as PlaneShadowScale and BrightLightsOnPlane do.
-struct PlaneMapShading
-{
-  const proxygi::BakedScene* Scene = nullptr;
-  const proxygi::SoftShadows* Shadows = nullptr;
-  const proxygi::BrightLightSet* Bright = nullptr; // null: no bright lights
-  const vtkPGIOccluder* Occluder = nullptr;        // null: the proxies' cones
-  float RayOffset = 0.0f, MinAngle = 0.0f;
-  bool ShadowsOn = true;
-};
-
-void FillPlaneLightMap(proxygi::PlaneLightMap& map, int plane, const PlaneMapShading& how,
-  vtkSMPThreadLocal<ShadeScratch>& perThread)
-{
-  const proxygi::BakedScene& b = *how.Scene;
-  const proxygi::Blockers& blockers = b.SceneBlockers;
-  const float* m = &blockers.PlaneNormal[3 * plane];
-  const int n2 = b.Order * b.Order;
-  float residual[3];
-  b.OpenShading->ShadeUnshadowed(m, residual);
-  float* scales = map.Scales();
-  vtkSMPTools::For(0, map.GetNumberOfPoints(), 256,
-    [&](vtkIdType first, vtkIdType last)
-    {
-      ShadeScratch& buffers = perThread.Local();
-      const int count = static_cast<int>(last - first);
-      buffers.BatchPoints.resize(3 * count);
-      buffers.BatchFacing.resize(3 * count);
-      buffers.BatchVisibilities.resize(static_cast<std::size_t>(n2) * count);
-      buffers.BatchStatuses.resize(count);
-      buffers.BatchUsed.resize(count);
-      for (int j = 0; j < count; ++j)
-      {
-        map.Point(static_cast<int>(first) + j, &buffers.BatchPoints[3 * j]);
-        std::copy_n(m, 3, &buffers.BatchFacing[3 * j]);
-      }
-      how.Shadows->VisibilityBatch(count, buffers.BatchPoints.data(), buffers.BatchFacing.data(),
-        blockers, buffers.BatchVisibilities.data(), buffers.BatchStatuses.data(),
-        buffers.BatchUsed.data());
-      for (int j = 0; j < count; ++j)
-      {
-        float* scale = &scales[3 * (first + j)];
-        proxygi::PlaneShadowScaleAt(*b.OpenShading, m, &buffers.BatchVisibilities[n2 * j],
-          buffers.BatchUsed[j], buffers.BatchStatuses[j], scale);
-        if (!how.Bright)
-        {
-          continue;
-        }
-        // The bright lights' share: lit over unshadowed, weighed against the
-        // residual's by their light on the plane.
-        const float* q = &buffers.BatchPoints[3 * j];
-        float lit[3] = { 0, 0, 0 }, open[3] = { 0, 0, 0 };
-        if (how.Occluder)
-        {
-          proxygi::BrightLightsFromRays(
-            *how.Bright, blockers, *how.Occluder, q, m, how.RayOffset, buffers.Bright, lit);
-        }
-        else
-        {
-          proxygi::BrightLightsFromProxies(
-            *how.Bright, blockers, q, m, how.MinAngle, how.ShadowsOn, lit);
-        }
-        proxygi::BrightLightsFromProxies(*how.Bright, blockers, q, m, how.MinAngle, false, open);
-        for (int c = 0; c < 3; ++c)
-        {
-          const float whole = residual[c] + open[c];
-          if (whole > 0.0f)
-          {
-            scale[c] = std::min(1.0f, (residual[c] * scale[c] + lit[c]) / whole);
-          }
-        }
-      }
-    });
-}
-} // namespace
-
 // Receiver clusters and their hierarchy cuts (one blocker list each), and
 // the clustering they came from.
 struct vtkPGIGlobalIllumination::Clusters
@@ -1057,28 +974,14 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   if (planeMaps)
   {
     const auto start = std::chrono::steady_clock::now();
-    PlaneMapShading how;
-    how.Scene = &b;
+    proxygi::PlaneLightMapShading how;
     how.Shadows = &shadows;
     how.Bright = b.RunBrightLights ? &bright : nullptr;
     how.Occluder = brightRays ? this->Occluder : nullptr;
     how.RayOffset = rayOffset;
     how.MinAngle = static_cast<float>(settings->GetMinBlockerAngle());
     how.ShadowsOn = shadowsOn;
-    maps.resize(planes);
-    const std::vector<proxygi::DistantLight> none;
-    int points = 0;
-    for (int k = 0; k < planes; ++k)
-    {
-      maps[k].Layout(blockers, k, b.RunBrightLights ? b.BrightLights : none, PlaneMapResolution,
-        planeDirections, order);
-      if (b.Environment)
-      {
-        maps[k].SetSky(*b.Environment);
-      }
-      FillPlaneLightMap(maps[k], k, how, this->Scratch->PerThread);
-      points += maps[k].GetNumberOfPoints();
-    }
+    const int points = proxygi::BuildPlaneLightMaps(b, how, planeDirections, maps);
     std::ostringstream line;
     line << "planes' bounce: the shadowed light of " << planes << " plane(s) on " << points
          << " grid points" << (how.Bright ? " (bright lights included)" : "") << ", averaged over "
