@@ -128,7 +128,9 @@ check image-space 'says:^note: --bright-shadows does not apply to --mode image-s
 check gpu 'says:^note: --bright-rays does not apply to --mode gpu' --bright-rays 4
 check vertex changes --plane-directions 0
 check vertex changes --plane-directions 16
-check gpu 'says:^note: --plane-directions does not apply to --mode gpu' --plane-directions 0
+check gpu changes --plane-directions 0
+check image-space 'says:^note: --plane-directions does not apply to --mode image-space' \
+  --plane-directions 0
 for mode in vertex gpu image-space; do
   check "$mode" changes --background none
 done

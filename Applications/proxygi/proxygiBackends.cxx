@@ -111,7 +111,8 @@ std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> AddGPUMappers(vtkRenderer* 
     mapper->SetLighting(loaded.Lighting);
     for (const auto& plane : proxies.Planes)
     {
-      mapper->AddBlockerPlane(plane.data(), plane.data() + 3, plane.data() + 6);
+      mapper->AddBlockerPlane(
+        plane.data(), plane.data() + 3, plane.data() + 6, plane.data() + 9, plane.data() + 12);
     }
     mapper->SetSettings(settings);
     mapper->SetExposure(exposure > 0.0 ? exposure : 1.0);

@@ -196,10 +196,10 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
     notFor("--bright-lights", sh);
     notFor("--bright-shadows", sh);
     notFor("--bright-rays", sh);
-    notFor("--plane-directions", "the GPU backends sample the planes' light at one point");
   }
   if (o.ImageSpace())
   {
+    notFor("--plane-directions", "the image-space pass samples the planes' light at one point");
     notFor("--reference-spp", "image-space is compared per pixel: --pixel-reference-spp");
     notFor("--vtp", "image-space has no per-vertex results");
   }

@@ -9,6 +9,7 @@
 #include "pgiSRGBGLSL.h"
 
 #include "pgiMaterial.h"
+#include "pgiPlaneLightMap.h"
 #include "pgiSHBasis.h"
 #include "pgiSHExp.h"
 #include "pgiSHLightTables.h"
@@ -129,6 +130,103 @@ void UploadProxyAlbedos(vtkOpenGLRenderWindow* window, const Blockers& blockers,
   texture = FloatTexture(window, width, rows, 4, texels);
 }
 
+void UploadPlaneLightMaps(
+  vtkOpenGLRenderWindow* window, const std::vector<PlaneLightMap>& maps, PlaneLightMapsGL& gl)
+{
+  for (auto* texture : { gl.Grid.Get(), gl.Table.Get() })
+  {
+    if (texture)
+    {
+      texture->ReleaseGraphicsResources(window);
+    }
+  }
+  gl = PlaneLightMapsGL();
+  const int planes = std::min(static_cast<int>(maps.size()), MaxPlanes);
+  const int directions = planes > 0 ? maps[0].GetNumberOfDirections() : 0;
+  if (directions == 0)
+  {
+    return;
+  }
+  gl.U.assign(3 * MaxPlanes, 0.0f);
+  gl.V.assign(3 * MaxPlanes, 0.0f);
+  gl.Frame.assign(4 * MaxPlanes, 0.0f);
+  gl.Size.assign(4 * MaxPlanes, 0.0f);
+  gl.Dual.assign(4 * MaxPlanes, 0.0f);
+  int width = 1, rows = 0;
+  for (int k = 0; k < planes; ++k)
+  {
+    width = std::max(width, maps[k].GetColumns());
+    rows += maps[k].GetRows();
+  }
+  std::vector<float> grid(4 * static_cast<std::size_t>(width) * std::max(1, rows), 0.0f);
+  std::vector<float> table(8 * static_cast<std::size_t>(directions) * planes, 0.0f);
+  int first = 0;
+  for (int k = 0; k < planes; ++k)
+  {
+    const PlaneLightMap& map = maps[k];
+    std::copy_n(map.GetU(), 3, &gl.U[3 * k]);
+    std::copy_n(map.GetV(), 3, &gl.V[3 * k]);
+    map.GetGrid(gl.Frame[4 * k], gl.Frame[4 * k + 1], gl.Frame[4 * k + 2]);
+    gl.Frame[4 * k + 3] = map.GetBounded() ? 1.0f : 0.0f;
+    const int columns = map.GetColumns(), mapRows = map.GetRows();
+    gl.Size[4 * k] = static_cast<float>(columns);
+    gl.Size[4 * k + 1] = static_cast<float>(mapRows);
+    gl.Size[4 * k + 2] = static_cast<float>(first);
+    std::copy_n(map.GetDual1(), 2, &gl.Dual[4 * k]);
+    std::copy_n(map.GetDual2(), 2, &gl.Dual[4 * k + 2]);
+    const float* s = map.Scales();
+    for (int j = 0; j < mapRows; ++j)
+    {
+      for (int i = 0; i < columns; ++i)
+      {
+        float* texel = &grid[4 * (static_cast<std::size_t>(first + j) * width + i)];
+        std::copy_n(&s[3 * (static_cast<std::size_t>(j) * columns + i)], 3, texel);
+      }
+    }
+    first += mapRows;
+    for (int q = 0; q < directions; ++q)
+    {
+      float* a = &table[4 * (static_cast<std::size_t>(2 * k) * directions + q)];
+      float* b = &table[4 * (static_cast<std::size_t>(2 * k + 1) * directions + q)];
+      std::copy_n(map.GetDirection(q), 3, a);
+      a[3] = map.GetStepU(q);
+      std::copy_n(map.GetSky(q), 3, b);
+      b[3] = map.GetStepV(q);
+    }
+    gl.Points += columns * mapRows;
+  }
+  gl.Grid = FloatTexture(window, width, std::max(1, rows), 4, grid);
+  gl.Table = FloatTexture(window, directions, 2 * planes, 4, table);
+  gl.Directions = gl.Grid && gl.Table ? directions : 0;
+}
+
+void BindPlaneLightMaps(vtkShaderProgram* program, PlaneLightMapsGL& gl)
+{
+  program->SetUniformi("pgiPlaneMapDirections", gl.Directions);
+  if (gl.Directions == 0)
+  {
+    return;
+  }
+  gl.Grid->Activate();
+  gl.Table->Activate();
+  program->SetUniformi("pgiPlaneMapGrid", gl.Grid->GetTextureUnit());
+  program->SetUniformi("pgiPlaneMapTable", gl.Table->GetTextureUnit());
+  program->SetUniform3fv("pgiPlaneMapU", MaxPlanes, gl.U.data());
+  program->SetUniform3fv("pgiPlaneMapV", MaxPlanes, gl.V.data());
+  program->SetUniform4fv("pgiPlaneMapFrame", MaxPlanes, gl.Frame.data());
+  program->SetUniform4fv("pgiPlaneMapSize", MaxPlanes, gl.Size.data());
+  program->SetUniform4fv("pgiPlaneMapDual", MaxPlanes, gl.Dual.data());
+}
+
+void ReleasePlaneLightMaps(PlaneLightMapsGL& gl)
+{
+  if (gl.Directions > 0)
+  {
+    gl.Grid->Deactivate();
+    gl.Table->Deactivate();
+  }
+}
+
 vtkPGIGISettings::Support KernelSupport(const char* backend, int maxOrder)
 {
   vtkPGIGISettings::Support s;
@@ -144,7 +242,6 @@ vtkPGIGISettings::Support KernelSupport(const char* backend, int maxOrder)
   s.SelfVisibility = false;
   s.BrightLights = false;
   s.LightCloud = false;
-  s.PlaneBounceDirections = false; // pgiPlaneShadowScale: one plane point
   s.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
   return s;
 }

@@ -52,6 +52,7 @@ class vtkWindow;
 namespace proxygi
 {
 struct Blockers;
+class PlaneLightMap;
 struct SphericalLights;
 namespace gpu
 {
@@ -76,6 +77,28 @@ PROXYGIRENDERING_EXPORT std::vector<float> PackPlaneAlbedos(const Blockers& bloc
  */
 PROXYGIRENDERING_EXPORT void UploadProxyAlbedos(vtkOpenGLRenderWindow* window,
   const Blockers& blockers, std::vector<float>& texels, vtkSmartPointer<vtkTextureObject>& texture);
+
+/**
+ * The planes' light maps (BuildPlaneLightMaps) as pgiPlaneLightScale in the
+ * GI mapper's compute shader reads them: the grids stacked in one float
+ * texture, the look-up directions (world vector, steps, sky) in another,
+ * and the per-plane uniforms (MaxPlanes each, zero-padded).
+ */
+struct PROXYGIRENDERING_EXPORT PlaneLightMapsGL
+{
+  int Directions = 0; // 0: no maps (one plane point)
+  vtkSmartPointer<vtkTextureObject> Grid, Table;
+  std::vector<float> U, V, Frame, Size, Dual; // 3, 3, 4, 4, 4 per plane
+  int Points = 0;
+};
+
+/// Uploads `maps` (all with the same directions) into `gl`, releasing what
+/// it held; empty maps or no directions leave it off.
+PROXYGIRENDERING_EXPORT void UploadPlaneLightMaps(
+  vtkOpenGLRenderWindow* window, const std::vector<PlaneLightMap>& maps, PlaneLightMapsGL& gl);
+/// Binds them to `program` (textures activated; Release deactivates).
+PROXYGIRENDERING_EXPORT void BindPlaneLightMaps(vtkShaderProgram* program, PlaneLightMapsGL& gl);
+PROXYGIRENDERING_EXPORT void ReleasePlaneLightMaps(PlaneLightMapsGL& gl);
 
 /// The indirect-light GLSL (pgiISLibrary.glsl: pgiProxyIndirectTerm,
 /// pgiResolveIndirect and their uniforms), to go after LibrarySource.

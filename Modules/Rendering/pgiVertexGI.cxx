@@ -10,6 +10,7 @@
 #include "pgiSRGBGLSL.h"
 
 #include "pgiMaterial.h"
+#include "pgiPlaneLightMap.h"
 #include "pgiSphericalLights.h"
 #include "vtkPGIGIBake.h"
 #include "vtkPGIGISettings.h"
@@ -38,6 +39,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -73,6 +75,10 @@ struct VertexGI::Internals
   bool PlanesInLight = false;
   std::vector<float> PlaneVisibility, Response, Albedos, PlaneAlbedos;
   vtkSmartPointer<vtkTextureObject> ProxyAlbedo;
+  // The planes' light maps (PlaneBounceDirections > 0), rebuilt with the bake.
+  std::vector<PlaneLightMap> PlaneMaps;
+  PlaneLightMapsGL PlaneMapsGL;
+  double PlaneMapMs = 0.0;
   // Local lights: centre and radius (-1: point light), radiance.
   std::vector<float> LocalLights, LocalRadiance;
   int SphericalLightCount = 0;
@@ -144,14 +150,14 @@ bool MapperScene::SetSettings(vtkPGIGISettings* settings)
 }
 
 bool MapperScene::AddBlockerPlane(
-  const double origin[3], const double normal[3], const double albedo[3])
+  const double origin[3], const double normal[3], const double albedo[3], const double* halfEdges)
 {
   if (this->Bake->GetNumberOfBlockerPlanes() >= MaxPlanes)
   {
     vtkErrorWithObjectMacro(this->Owner, "At most " << MaxPlanes << " blocker planes.");
     return false;
   }
-  this->Bake->AddBlockerPlane(origin, normal, albedo);
+  this->Bake->AddBlockerPlane(origin, normal, albedo, halfEdges);
   return true;
 }
 
@@ -254,6 +260,14 @@ void VertexGI::ReleaseGraphicsResources(vtkWindow* window)
     g.ProxyAlbedo->ReleaseGraphicsResources(window);
     g.ProxyAlbedo = nullptr;
   }
+  for (auto* texture : { g.PlaneMapsGL.Grid.Get(), g.PlaneMapsGL.Table.Get() })
+  {
+    if (texture)
+    {
+      texture->ReleaseGraphicsResources(window);
+    }
+  }
+  g.PlaneMapsGL = PlaneLightMapsGL();
   g.Window = nullptr;
   g.ReceiversKey.clear();
   g.UploadedOrder = 0;
@@ -287,6 +301,25 @@ void VertexGI::UploadBake(vtkObject* owner, vtkOpenGLRenderWindow* window, vtkPG
   g.PlaneCount = static_cast<int>(b.SceneBlockers.Planes());
   g.PlaneAlbedos = PackPlaneAlbedos(b.SceneBlockers);
   UploadProxyAlbedos(window, b.SceneBlockers, g.Albedos, g.ProxyAlbedo);
+
+  // The planes' light maps, built on the CPU as the GI filter builds them
+  // (no bright lights here: the whole map is in the SH).
+  vtkPGIGISettings* settings = bake->GetSettings();
+  const int directions = settings->GetPlaneBounceDirections();
+  g.PlaneMaps.clear();
+  if (directions > 0 && settings->GetIndirect() && settings->GetPlaneBounceShadows() &&
+    g.PlaneCount > 0 && g.PlaneCount <= MaxPlanes && !b.Dark)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const SoftShadows shadows(b.Kernel);
+    PlaneLightMapShading how;
+    how.Shadows = &shadows;
+    how.MinAngle = static_cast<float>(settings->GetMinBlockerAngle());
+    BuildPlaneLightMaps(b, how, directions, g.PlaneMaps);
+    g.PlaneMapMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  UploadPlaneLightMaps(window, g.PlaneMaps, g.PlaneMapsGL);
 
   // The shadowed bounce's spherical lights after the bake's first pass.
   g.SphericalLightCount = b.RunShadowed ? static_cast<int>(b.Lights.Count()) : 0;
@@ -482,6 +515,7 @@ bool VertexGI::RunGIPass(vtkObject* owner, vtkOpenGLRenderWindow* window, vtkPGI
   }
   g.ProxyAlbedo->Activate();
   program->SetUniformi("pgiProxyAlbedo", g.ProxyAlbedo->GetTextureUnit());
+  BindPlaneLightMaps(program, g.PlaneMapsGL);
 
   g.VAO->Bind();
   const struct
@@ -513,6 +547,7 @@ bool VertexGI::RunGIPass(vtkObject* owner, vtkOpenGLRenderWindow* window, vtkPGI
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
   g.VAO->Release();
   g.ProxyAlbedo->Deactivate();
+  ReleasePlaneLightMaps(g.PlaneMapsGL);
   g.Resources.Unbind();
   return true;
 }
@@ -545,6 +580,15 @@ void VertexGI::ComposeStatus(vtkObject* owner, vtkPGIGIBake* bake, const std::st
            << (indirect && settings->GetPlaneBounceShadows() && g.PlaneCount > 0
                   ? ", planes' bounce shadowed"
                   : "");
+    if (g.PlaneMapsGL.Directions > 0)
+    {
+      status << " (light maps: " << g.PlaneMapsGL.Points << " grid points built on the CPU in "
+             << g.PlaneMapMs << " ms, " << g.PlaneMapsGL.Directions << " directions per vertex)";
+    }
+    else if (indirect && settings->GetPlaneBounceShadows() && g.PlaneCount > 0)
+    {
+      status << " (one plane point per vertex)";
+    }
     if (!g.LocalLights.empty())
     {
       status << ", " << g.LocalLights.size() / 4 << " local lights";

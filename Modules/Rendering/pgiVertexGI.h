@@ -77,7 +77,9 @@ public:
   /// Each returns whether anything changed (the owner then calls Modified).
   bool SetLighting(vtkPGILighting* lighting);
   bool SetSettings(vtkPGIGISettings* settings);
-  bool AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
+  /// halfEdges (6, null: unbounded): the plane's extent (vtkPGIGIBake).
+  bool AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3],
+    const double* halfEdges = nullptr);
   void RemoveAllBlockerPlanes();
 
   /// The proxies on input port 1 of `mapper`, brought up to date (a mapper's
@@ -225,6 +227,17 @@ private:
     const double origin[3], const double normal[3], const double albedo[3])                        \
   {                                                                                                \
     if (this->Scene.AddBlockerPlane(origin, normal, albedo))                                       \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+                                                                                                   \
+  void cls::AddBlockerPlane(const double origin[3], const double normal[3],                        \
+    const double albedo[3], const double halfEdge1[3], const double halfEdge2[3])                  \
+  {                                                                                                \
+    const double halfEdges[6] = { halfEdge1[0], halfEdge1[1], halfEdge1[2], halfEdge2[0],          \
+      halfEdge2[1], halfEdge2[2] };                                                                \
+    if (this->Scene.AddBlockerPlane(origin, normal, albedo, halfEdges))                            \
     {                                                                                              \
       this->Modified();                                                                            \
     }                                                                                              \

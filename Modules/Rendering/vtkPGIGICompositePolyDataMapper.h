@@ -58,6 +58,10 @@ public:
   /// Infinite planes blocking the half-space beneath them (at most 8).
   void AddBlockerPlane(const double origin[3], const double normal[3]);
   void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
+  /// A plane of finite extent (vtkPGIGlobalIllumination::AddBlockerPlane):
+  /// with PlaneBounceDirections > 0 it reflects from that area only.
+  void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3],
+    const double halfEdge1[3], const double halfEdge2[3]);
   void RemoveAllBlockerPlanes();
 
   void SetGlobalIllumination(bool on);

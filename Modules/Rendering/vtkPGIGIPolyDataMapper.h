@@ -104,6 +104,10 @@ public:
   /// albedo (default 0) for the indirect light they reflect.
   void AddBlockerPlane(const double origin[3], const double normal[3]);
   void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3]);
+  /// A plane of finite extent (vtkPGIGlobalIllumination::AddBlockerPlane):
+  /// with PlaneBounceDirections > 0 it reflects from that area only.
+  void AddBlockerPlane(const double origin[3], const double normal[3], const double albedo[3],
+    const double halfEdge1[3], const double halfEdge2[3]);
   void RemoveAllBlockerPlanes();
   static constexpr int MaxLocalLights = proxygi::gpu::VertexGI::MaxLocalLights;
 

@@ -301,6 +301,7 @@ const vtkPGIGISettings::Support& vtkPGIImageSpaceGIPass::GetSupport()
     s.IndirectModes = 1u << vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
     s.SphericalLightBlocking = false;
     s.PlaneBounceShadows = false;
+    s.PlaneBounceDirections = false;
     s.PlaneBlockings = 1u << vtkPGIGISettings::PLANES_IN_LOG_SPACE;
     s.LocalLights = false;
     s.LightCloud = false;

@@ -33,7 +33,7 @@
  * | IndirectOperator | AVERAGED | POINT_SAMPLED, AVERAGED (D(theta)), EXACT (M(theta)) |
  * | SphericalLightBlocking | PER_SPHERE | SHADOWED: lights block per sphere or per object |
  * | PlaneBounceShadows | on | planes reflect less where the proxies shadow them |
- * | PlaneBounceDirections | 64 | planes' light averaged per receiver (pgiPlaneLightMap.h); CPU |
+ * | PlaneBounceDirections | 64 | planes' light averaged per receiver (pgiPlaneLightMap.h) |
  * | PlaneBlocking | PLANES_IN_LIGHT | planes as steps in the light, or caps in log space |
  * | LocalLights | on | the lighting's spherical and point lights |
  * | LightCloud | on | point lights' indirect light from a light cloud (SetLocalLightTransfer) |
@@ -210,7 +210,7 @@ public:
     unsigned IndirectOperators = 0x7;
     bool SphericalLightBlocking = true;
     bool PlaneBounceShadows = true;
-    bool PlaneBounceDirections = true; // false: one plane point per receiver
+    bool PlaneBounceDirections = true; // and the planes' extent; false: one point
     unsigned PlaneBlockings = 0x3;
     bool LocalLights = true;
     bool LightCloud = true;     // a vtkPGILocalLightTransfer for the point lights

@@ -43,11 +43,163 @@ uniform int pgiIndirectShadowed;
 uniform sampler2D pgiProxyAlbedo;
 // 1: planes reflect less where the proxies shadow them (PlaneBounceShadows).
 uniform int pgiPlaneBounceShadows;
+// The planes' light maps (PlaneLightMap, pgiPlaneLightMap.cxx, built on the
+// CPU by BuildPlaneLightMaps): pgiPlaneMapDirections look-ups per receiver
+// (0: one plane point, pgiPlaneShadowScale). pgiPlaneMapGrid holds s (rgb)
+// of plane k in its rows from pgiPlaneMapSize[k].z; pgiPlaneMapTable, per
+// plane two rows of one texel per direction: (w, step u), (sky, step v).
+uniform int pgiPlaneMapDirections;
+uniform sampler2D pgiPlaneMapGrid;
+uniform sampler2D pgiPlaneMapTable;
+uniform vec3 pgiPlaneMapU[PGI_MAX_PLANES];
+uniform vec3 pgiPlaneMapV[PGI_MAX_PLANES];
+uniform vec4 pgiPlaneMapFrame[PGI_MAX_PLANES]; // U0, V0, cell, bounded (1)
+uniform vec4 pgiPlaneMapSize[PGI_MAX_PLANES];  // columns, rows, first row
+uniform vec4 pgiPlaneMapDual[PGI_MAX_PLANES];  // the extent's dual vectors in (U, V)
 // rgb: exit radiance (albedo included; direct + indirect + local lights,
 // the filter's Radiance); a: blockers accumulated.
 out vec4 pgiRadiance;
 
 //PGI::Capture::Dec
+
+float pgiDot3(vec3 a, vec3 b)
+{
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+// Bilinear s of plane k at grid coordinates (fu, fv); 1 outside (Bilinear).
+vec3 pgiPlaneMapBilinear(int k, float fu, float fv)
+{
+  int columns = int(pgiPlaneMapSize[k].x), rows = int(pgiPlaneMapSize[k].y);
+  int first = int(pgiPlaneMapSize[k].z);
+  if (!(fu >= 0.0) || !(fv >= 0.0) || !(fu < float(columns - 1)) || !(fv < float(rows - 1)))
+  {
+    return vec3(1.0);
+  }
+  int i = int(fu), j = int(fv);
+  float a = fu - float(i), b = fv - float(j);
+  vec3 p00 = texelFetch(pgiPlaneMapGrid, ivec2(i, first + j), 0).rgb;
+  vec3 p10 = texelFetch(pgiPlaneMapGrid, ivec2(i + 1, first + j), 0).rgb;
+  vec3 p01 = texelFetch(pgiPlaneMapGrid, ivec2(i, first + j + 1), 0).rgb;
+  vec3 p11 = texelFetch(pgiPlaneMapGrid, ivec2(i + 1, first + j + 1), 0).rgb;
+  vec3 bottom = p00 + a * (p10 - p00);
+  vec3 top = p01 + a * (p11 - p01);
+  return bottom + b * (top - bottom);
+}
+
+// PlaneLightMap::Scale: the scale of plane k's light a receiver at p
+// (normal n) sees, each direction weighted by the visibility g when
+// `weighted`, and the sky past a bounded plane's edges (gap). False (scale
+// 1, gap 0) when the receiver is not above the plane or sees none of it.
+bool pgiPlaneLightScale(
+  vec3 p, vec3 n, int k, bool weighted, float g[PGI_SH_N2], out vec3 scale, out vec3 gap)
+{
+  scale = vec3(1.0);
+  gap = vec3(0.0);
+  vec3 d = p - pgiPlaneOrigin[k];
+  float h = pgiDot3(d, pgiPlaneNormal[k]);
+  if (!(h > 0.0))
+  {
+    return false;
+  }
+  float x = pgiDot3(d, pgiPlaneMapU[k]), y = pgiDot3(d, pgiPlaneMapV[k]);
+  vec4 frame = pgiPlaneMapFrame[k];
+  vec4 dual = pgiPlaneMapDual[k];
+  float inv = 1.0 / frame.z;
+  float fu = (x - frame.x) * inv, fv = (y - frame.y) * inv, hu = h * inv;
+  bool empty = pgiPlaneMapSize[k].x < 1.0;
+  vec3 sum = vec3(0.0), sky = vec3(0.0);
+  float weights = 0.0;
+  for (int q = 0; q < pgiPlaneMapDirections; ++q)
+  {
+    vec4 wu = texelFetch(pgiPlaneMapTable, ivec2(q, 2 * k), 0);
+    vec4 sv = texelFetch(pgiPlaneMapTable, ivec2(q, 2 * k + 1), 0);
+    float c = pgiDot3(n, wu.xyz);
+    if (!(c > 0.0))
+    {
+      continue;
+    }
+    weights += c;
+    float seen = c;
+    if (weighted)
+    {
+      float yq[PGI_SH_N2];
+      pgiSHBasis(wu.xyz, yq);
+      float v = 0.0;
+      for (int i = 0; i < PGI_SH_N2; ++i)
+      {
+        v += g[i] * yq[i];
+      }
+      seen *= min(1.0, max(0.0, v));
+    }
+    if (frame.w > 0.5)
+    {
+      float ex = x + h * wu.w, ey = y + h * sv.w;
+      float a = ex * dual.x + ey * dual.y, b = ex * dual.z + ey * dual.w;
+      if (!(abs(a) <= 1.0 && abs(b) <= 1.0))
+      {
+        sky += seen * sv.rgb;
+        continue;
+      }
+    }
+    vec3 s = empty ? vec3(1.0) : pgiPlaneMapBilinear(k, fu + hu * wu.w, fv + hu * sv.w);
+    sum += seen * s;
+  }
+  if (!(weights > 0.0))
+  {
+    return false;
+  }
+  scale = clamp(sum / weights, 0.0, 1.0);
+  gap = 2.0 * sky / float(pgiPlaneMapDirections);
+  return true;
+}
+
+// pgiResolveIndirectScaled with the planes' light maps (IndirectExitRadiance
+// with planesSeenPast when seenPast: the plane takes no xi and counts in
+// none, visibilityDC is the spheres' alone); gap: the sky past the planes'
+// edges for the direct light.
+vec3 pgiResolveIndirectMapped(vec3 p, vec3 n, vec4 sum, float visibilityDC,
+  bool planesInLogSpace, bool seenPast, bool weighted, float g[PGI_SH_N2], out vec3 gap)
+{
+  gap = vec3(0.0);
+  vec3 rgb = sum.rgb, planes = vec3(0.0);
+  float omega = sum.a;
+  float h[PGI_SH_N2];
+  pgiDiffuseTransfer(n, h);
+  for (int k = 0; k < pgiNumPlanes; ++k)
+  {
+    vec3 o = pgiPlaneOrigin[k];
+    vec3 pn = pgiPlaneNormal[k];
+    float height = (p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z;
+    if (!(height > pgiPlaneTolerance))
+    {
+      continue;
+    }
+    float y[PGI_SH_N2];
+    pgiSHBasis(pn, y);
+    vec3 radiance = vec3(0.0);
+    for (int i = 0; i < PGI_SH_N2; ++i)
+    {
+      radiance += y[i] * pgiResponse[i];
+    }
+    vec3 scale, skyPast;
+    pgiPlaneLightScale(p, n, k, weighted, g, scale, skyPast);
+    vec3 term = pgiPlaneAlbedo[k] * scale * radiance * pgiCapWeight(0.5 * pgiPi, -pn, h);
+    if (seenPast)
+    {
+      planes += term;
+      gap += skyPast;
+    }
+    else
+    {
+      omega += 2.0 * pgiPi;
+      rgb += term;
+    }
+  }
+  float covered = 4.0 * pgiPi - pgiSqrtFourPi * visibilityDC;
+  float xi = omega > 0.0 ? clamp(covered / omega, 0.0, 1.0) : 1.0;
+  return max(xi * rgb + planes, vec3(0.0));
+}
 
 void main()
 {
@@ -92,8 +244,11 @@ void main()
       vec3 albedo = pgiIndirectShadowed != 0 ? vec3(0.0) : texelFetch(pgiProxyAlbedo, texel, 0).rgb;
       sum += pgiProxyIndirectTermH(p, n, h, texelFetch(pgiProxyTexture, texel, 0), albedo);
     }
+    // With the one plane seen past the visibility (pgiPlaneLightScale), xi
+    // is the spheres' alone.
+    bool seenPast = pgiPlaneMapDirections > 0 && pgiNumPlanes == 1 && carried;
     float dc = g[0];
-    if (carried)
+    if (carried && !seenPast)
     {
       float coverage = 0.0;
       for (int i = 0; i < PGI_SH_N2; ++i)
@@ -102,8 +257,21 @@ void main()
       }
       dc = coverage / pgiSqrtFourPi;
     }
-    rgb += pgiResolveIndirectScaled(
-      p, n, sum, dc, pgiPlaneBounceShadows != 0, pgiPlanesInLight == 0);
+    if (pgiPlaneMapDirections > 0)
+    {
+      vec3 gap;
+      rgb += pgiResolveIndirectMapped(
+        p, n, sum, dc, pgiPlanesInLight == 0, seenPast, seenPast && used > 0, g, gap);
+      if (pgiShadows != 0)
+      {
+        rgb += gap;
+      }
+    }
+    else
+    {
+      rgb += pgiResolveIndirectScaled(
+        p, n, sum, dc, pgiPlaneBounceShadows != 0, pgiPlanesInLight == 0);
+    }
   }
 #if PGI_SPHERICAL_LIGHTS
   if (pgiIndirect != 0 && pgiIndirectShadowed != 0)

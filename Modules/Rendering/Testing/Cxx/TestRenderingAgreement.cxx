@@ -93,15 +93,20 @@ struct Case
   int PlaneBlocking = vtkPGIGISettings::PLANES_IN_LIGHT; // both defaults
   bool Indirect = false;
   bool PlaneBounceShadows = true; // both defaults
-  bool Shadowed = false;          // INDIRECT_MODE_SHADOWED (spherical lights)
-  bool PerObject = false;         // BLOCKING_PER_OBJECT
+  // The planes' light maps' directions (0: one plane point) and the
+  // planes' half edges (all 0: unbounded).
+  int PlaneDirections = 0;
+  std::array<double, 6> PlaneExtent = { 0, 0, 0, 0, 0, 0 };
+  bool Shadowed = false;  // INDIRECT_MODE_SHADOWED (spherical lights)
+  bool PerObject = false; // BLOCKING_PER_OBJECT
   std::array<double, 3> PlaneAlbedo = { 0, 0, 0 };
   vtkSmartPointer<vtkPGILighting> Lighting; // with local lights; else the sky
 };
 
-// Renders the receivers with the GI mapper, reads back, runs the CPU filter.
-void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int order,
-  double maxRadianceBound, double maxVisibilityBound, bool strict)
+// Renders the receivers with the GI mapper, reads back, runs the CPU filter;
+// returns the mapper's radiance (null if it could not be read).
+vtkSmartPointer<vtkFloatArray> Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c,
+  int order, double maxRadianceBound, double maxVisibilityBound, bool strict)
 {
   vtkPGILighting* lighting = c.Lighting ? c.Lighting.Get() : sky;
   const bool local = !lighting->GetSphereLights().empty() || !lighting->GetPointLights().empty();
@@ -123,9 +128,11 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
   mapper->GetSettings()->SetSphericalLightBlocking(
     c.PerObject ? vtkPGIGISettings::BLOCKING_PER_OBJECT : vtkPGIGISettings::BLOCKING_PER_SPHERE);
   mapper->GetSettings()->SetPlaneBounceShadows(c.PlaneBounceShadows);
+  mapper->GetSettings()->SetPlaneBounceDirections(c.PlaneDirections);
   for (const auto& p : c.Planes)
   {
-    mapper->AddBlockerPlane(p.data(), p.data() + 3, c.PlaneAlbedo.data());
+    mapper->AddBlockerPlane(
+      p.data(), p.data() + 3, c.PlaneAlbedo.data(), c.PlaneExtent.data(), c.PlaneExtent.data() + 3);
   }
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
@@ -143,7 +150,7 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
   window->RemoveRenderer(renderer);
   if (!PGI_CHECK(read))
   {
-    return;
+    return nullptr;
   }
 
   vtkSmartPointer<vtkPolyData> cpuInput = c.Receivers;
@@ -169,8 +176,7 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
     gi->GetSettings()->SetSphericalLightBlocking(
       c.PerObject ? vtkPGIGISettings::BLOCKING_PER_OBJECT : vtkPGIGISettings::BLOCKING_PER_SPHERE);
     gi->GetSettings()->SetPlaneBounceShadows(c.PlaneBounceShadows);
-    // The mapper samples the planes' light at one point (its twin).
-    gi->GetSettings()->SetPlaneBounceDirections(0);
+    gi->GetSettings()->SetPlaneBounceDirections(c.PlaneDirections);
     gi->GetSettings()->SetLocalLights(local);
     gi->GetSettings()->SetShadingPath(path);
     if (c.PlaneBlocking != vtkPGIGISettings::PLANES_IN_LIGHT)
@@ -179,7 +185,8 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
     }
     for (const auto& p : c.Planes)
     {
-      gi->AddBlockerPlane(p.data(), p.data() + 3, c.PlaneAlbedo.data());
+      gi->AddBlockerPlane(p.data(), p.data() + 3, c.PlaneAlbedo.data(), c.PlaneExtent.data(),
+        c.PlaneExtent.data() + 3);
     }
     gi->Update();
     return vtkSmartPointer<vtkPolyData>(gi->GetOutput());
@@ -294,6 +301,7 @@ void Compare(vtkRenderWindow* window, vtkPGILighting* sky, const Case& c, int or
   }
   // The tabulated L*H(N) of the CPU differs by its interpolation only.
   pgitest::Below(tab.RelativeMax(), 0.02, (what + ": table path").c_str(), __FILE__, __LINE__);
+  return radiance;
 }
 } // namespace
 
@@ -420,9 +428,10 @@ int TestRenderingAgreement(int, char*[])
     proxies->GetPointData()->AddArray(albedo);
     bounce.Proxies = proxies;
   }
+  vtkSmartPointer<vtkFloatArray> onePoint;
   for (int order : { 3, 4 })
   {
-    Compare(window, lighting, bounce, order, 1e-4, 1e-4, strict);
+    onePoint = Compare(window, lighting, bounce, order, 1e-4, 1e-4, strict);
   }
   Case bounceLog = bounce;
   bounceLog.Name = "indirect, log space";
@@ -436,6 +445,39 @@ int TestRenderingAgreement(int, char*[])
   bounceFlat.Name = "indirect, shadows off";
   bounceFlat.Shadows = false;
   Compare(window, lighting, bounceFlat, 4, 1e-4, 1e-4, strict);
+  // The planes' light maps (pgiPlaneLightScale against PlaneLightMap::Scale):
+  // an endless ground, then a bounded one (the sky past its edges), in the
+  // light and in log space.
+  Case mapped = bounce;
+  mapped.Name = "indirect, light map";
+  mapped.PlaneDirections = 64;
+  vtkSmartPointer<vtkFloatArray> endless = Compare(window, lighting, mapped, 4, 1e-4, 1e-4, strict);
+  Case bounded = mapped;
+  bounded.Name = "indirect, light map, 3 x 2";
+  bounded.PlaneExtent = { 1.5, 0, 0, 0, 1.0, 0 };
+  vtkSmartPointer<vtkFloatArray> small = Compare(window, lighting, bounded, 4, 1e-4, 1e-4, strict);
+  // Each changes the picture well beyond the tolerance above, so a mapper
+  // that ignored the maps or the extent would fail the comparisons.
+  if (PGI_CHECK(onePoint && endless && small))
+  {
+    double mapChange = 0.0, extentChange = 0.0;
+    for (vtkIdType i = 0; i < onePoint->GetNumberOfValues(); ++i)
+    {
+      mapChange =
+        std::max(mapChange, std::fabs(double(endless->GetValue(i)) - onePoint->GetValue(i)));
+      extentChange =
+        std::max(extentChange, std::fabs(double(small->GetValue(i)) - endless->GetValue(i)));
+    }
+    std::printf("light map against one point: largest change %.3g; a 3 x 2 ground against an "
+                "endless one: %.3g\n",
+      mapChange, extentChange);
+    PGI_CHECK(mapChange > 1e-2);
+    PGI_CHECK(extentChange > 1e-2);
+  }
+  Case boundedLog = bounded;
+  boundedLog.Name = "light map, 3 x 2, log space";
+  boundedLog.PlaneBlocking = vtkPGIGISettings::PLANES_IN_LOG_SPACE;
+  Compare(window, lighting, boundedLog, 4, 1e-4, 1e-4, strict);
 
   // Local lights: two spherical lights (one small, below the table's first
   // theta node; one large and near) and a point light, over the sky, with
@@ -472,6 +514,11 @@ int TestRenderingAgreement(int, char*[])
   {
     Compare(window, lighting, shadowed, order, 1e-4, 1e-4, strict);
   }
+  Case shadowedMapped = shadowed;
+  shadowedMapped.Name = "shadowed, light map, 3 x 2";
+  shadowedMapped.PlaneDirections = 64;
+  shadowedMapped.PlaneExtent = bounded.PlaneExtent;
+  Compare(window, lighting, shadowedMapped, 4, 1e-4, 1e-4, strict);
   Case shadowedLog = shadowed;
   shadowedLog.Name = "shadowed, log space";
   shadowedLog.PlaneBlocking = vtkPGIGISettings::PLANES_IN_LOG_SPACE;

@@ -94,7 +94,6 @@ vtkSmartPointer<vtkPolyData> RunCPU(
   const double origin[3] = { 0, 0, Ground }, up[3] = { 0, 0, 1 }, grey[3] = { 0.5, 0.5, 0.5 };
   gi->AddBlockerPlane(origin, up, grey);
   gi->GetSettings()->SetShadingPath(vtkPGIGISettings::SHADING_PRODUCT_MATRIX);
-  gi->GetSettings()->SetPlaneBounceDirections(0); // the mapper's one plane point
   gi->GetSettings()->SetIndirect(mode.Indirect);
   gi->GetSettings()->SetIndirectMode(mode.Shadowed ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
                                                    : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
