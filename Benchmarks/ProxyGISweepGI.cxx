@@ -164,6 +164,13 @@ int main(int argc, char* argv[])
       static_cast<long long>(proxies[count].Leaves), proxies[count].Seconds,
       proxies[count].Cached ? " (cached)" : "");
   }
+  // The 64 spheres' radii fitted for occlusion (vtkPGIOcclusionFit).
+  SceneProxies fitted;
+  if (!BuildSceneProxies(scene, loaded, 64, cache, fitted, error, &progress, ProxyFit::Occlusion))
+  {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return progress.Interrupted() ? InterruptedExitCode : 1;
+  }
 
   struct Config
   {
@@ -178,7 +185,8 @@ int main(int argc, char* argv[])
     int Mode = vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
     int Blocking = vtkPGIGISettings::BLOCKING_PER_SPHERE;
     bool SelfVisibility = false;
-    int Bright = 0; // bright lights: 0 off (the map in SH), 1 proxies' cones, 2 rays
+    bool Fitted = false; // the spheres' radii fitted for occlusion
+    int Bright = 0;      // bright lights: 0 off (the map in SH), 1 proxies' cones, 2 rays
   };
   std::vector<Config> configs;
   configs.push_back({ "baseline", "order 4, HYB, 64 spheres, averaged" });
@@ -265,11 +273,15 @@ int main(int argc, char* argv[])
     c.Setting = "taken out, 16 rays per light against the meshes";
     c.Bright = 2;
     configs.push_back(c);
-    c.Knob = "proxygi render";
-    c.Setting = "its default: traced self, bright rays, shadowed, hierarchy 25";
+    c.Knob = "proxy fit";
+    c.Setting = "proxygi render's default with bounding radii";
     c.SelfVisibility = true;
     c.Mode = vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
     c.Hierarchy = 25.0;
+    configs.push_back(c);
+    c.Knob = "proxygi render";
+    c.Setting = "its default: fitted radii, traced self, bright rays, shadowed, hierarchy 25";
+    c.Fitted = true;
     configs.push_back(c);
   }
   // The meshes for the bright lights' rays (its Embree scene built here).
@@ -306,7 +318,7 @@ int main(int argc, char* argv[])
       {
         vtkNew<vtkPGIGlobalIllumination> gi;
         gi->SetInputData(r);
-        ConfigureGlobalIllumination(gi, scene, loaded, proxies.at(c.Spheres));
+        ConfigureGlobalIllumination(gi, scene, loaded, c.Fitted ? fitted : proxies.at(c.Spheres));
         gi->GetSettings()->SetOrder(c.Order);
         gi->GetSettings()->SetExpMethod(c.Method);
         gi->GetSettings()->SetHierarchyAngle(c.Hierarchy);
@@ -417,8 +429,9 @@ int main(int argc, char* argv[])
       std::fprintf(stderr, "%s\n", error.c_str());
       return 1;
     }
-    SceneProxies sp;
-    if (!BuildSceneProxies(sd, ld, 64, cache, sp, error, &progress))
+    SceneProxies sp, spFitted;
+    if (!BuildSceneProxies(sd, ld, 64, cache, sp, error, &progress) ||
+      !BuildSceneProxies(sd, ld, 64, cache, spFitted, error, &progress, ProxyFit::Occlusion))
     {
       std::fprintf(stderr, "%s\n", error.c_str());
       return progress.Interrupted() ? InterruptedExitCode : 1;
@@ -437,7 +450,11 @@ int main(int argc, char* argv[])
     const auto refProxies = ref.empty()
       ? ref
       : SceneReference(sd, ld, rc, sceneSpp, cache, &sp, tracingProxies, error, 1, true, &progress);
-    if (ref.empty() || refProxies.empty())
+    const auto refFitted = refProxies.empty()
+      ? refProxies
+      : SceneReference(
+          sd, ld, rc, sceneSpp, cache, &spFitted, tracingProxies, error, 1, true, &progress);
+    if (ref.empty() || refProxies.empty() || refFitted.empty())
     {
       std::fprintf(stderr, "%s\n", error.c_str());
       return progress.Interrupted() ? InterruptedExitCode : 1;
@@ -459,13 +476,16 @@ int main(int argc, char* argv[])
     // Unshadowed, shadowed, both traced; then shadowed and traced with the
     // bright lights taken out (proxies' cones, rays against the meshes); last
     // the rays with the planes' light sampled at one point per receiver (the
-    // GPU's way, and the filter's before the planes' light maps).
-    for (int variant = 0; variant < 7; ++variant)
+    // GPU's way, and the filter's before the planes' light maps); then the
+    // rays with the light maps and the radii fitted for occlusion (the CLI's
+    // default).
+    for (int variant = 0; variant < 8; ++variant)
     {
+      const bool fitted = variant == 7;
       const int mode = variant % 2 || variant >= 4 ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
                                                    : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
       const bool traced = variant >= 2;
-      const int bright = variant == 6 ? 2 : (variant >= 4 ? variant - 3 : 0);
+      const int bright = variant >= 6 ? 2 : (variant >= 4 ? variant - 3 : 0);
       const bool onePoint = variant == 6;
       std::vector<vtkSmartPointer<vtkPolyData>> shaded;
       vtkIdType count = 0;
@@ -478,7 +498,7 @@ int main(int argc, char* argv[])
         {
           vtkNew<vtkPGIGlobalIllumination> gi;
           gi->SetInputData(r);
-          ConfigureGlobalIllumination(gi, sd, ld, sp);
+          ConfigureGlobalIllumination(gi, sd, ld, fitted ? spFitted : sp);
           gi->GetSettings()->SetIndirectMode(mode);
           gi->GetSettings()->SetBrightLights(bright > 0);
           gi->GetSettings()->SetPlaneBounceDirections(onePoint ? 0 : 64);
@@ -494,7 +514,8 @@ int main(int argc, char* argv[])
       std::snprintf(line, sizeof(line),
         "| %s | %s | %lld | %.3f | %.1f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% |\n",
         sd.Name.c_str(),
-        onePoint        ? "shadowed, traced, bright rays, planes' light at one point"
+        fitted          ? "shadowed, traced, bright rays, radii fitted for occlusion"
+          : onePoint    ? "shadowed, traced, bright rays, planes' light at one point"
           : bright == 2 ? "shadowed, traced, bright lights (rays)"
           : bright == 1 ? "shadowed, traced, bright lights (proxies)"
           : mode == vtkPGIGISettings::INDIRECT_MODE_SHADOWED
@@ -506,7 +527,8 @@ int main(int argc, char* argv[])
         100 * RelativeRMSE(shaded, "IndirectAny", ref, "IndirectOneBounce"),
         100 * RelativeRMSE(shaded, "Radiance", ref, "Radiance"),
         100 * RelativeRMSE(shaded, "Radiance", ref, "Radiance", planes),
-        100 * RelativeRMSE(shaded, "Radiance", refProxies, "Radiance", planes));
+        100 *
+          RelativeRMSE(shaded, "Radiance", fitted ? refFitted : refProxies, "Radiance", planes));
       md << line;
       std::printf("%s", line);
     }

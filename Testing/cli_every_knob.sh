@@ -133,6 +133,7 @@ check image-space 'says:^note: --plane-directions does not apply to --mode image
   --plane-directions 0
 for mode in vertex gpu image-space; do
   check "$mode" changes --background none
+  check "$mode" changes --proxy-fit bounding
 done
 check gpu 'says:^not honoured: HierarchyAngle' --hierarchy 25
 check image-space 'says:^not honoured: HierarchyAngle' --hierarchy 25

@@ -50,6 +50,11 @@ an option a mode has no use for as "note: ... does not apply".
   --method M          exp method: HYB (default), OL, PS*, PS (the GPU modes
                       run HYB and say so)
   --spheres N         proxy spheres per mesh (default 64)
+  --proxy-fit F       the spheres' radii: occlusion (default: the bounding
+                      spheres scaled so that they block what the mesh blocks,
+                      by Embree rays around it, vtkPGIOcclusionFit; fitted
+                      once and cached) or bounding (every point of the mesh
+                      inside a sphere)
   --indirect M        one-bounce light: shadowed (spherical lights, Guerrero
                       2008; default in vertex and gpu), unshadowed (Sloan 2007;
                       default and only one in image-space), off

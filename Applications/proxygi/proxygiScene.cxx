@@ -76,6 +76,7 @@ struct RenderOptions
   int Order = 4, Spheres = 64, ReferenceSpp = 1024, ReceiverScale = 2, PixelSpp = 256;
   int SelfVisibility = 256; // rays per vertex of the meshes' own visibility; 0: the rules
   std::string BrightLights = "on", BrightShadows = "rays", Background = "map";
+  std::string ProxyFit = "occlusion"; // the spheres' radii: fitted for occlusion, or bounding
   int BrightRays = 16;
   int PlaneDirections = 64; // the planes' bounce: look-ups per receiver (0: one point)
   int ExpMethod = vtkPGIGISettings::EXP_HYB;
@@ -126,6 +127,7 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   o.BrightShadows = Option(args, "--bright-shadows", "rays");
   o.BrightRays = static_cast<int>(NumberOption(args, "--bright-rays", 16, ok));
   o.PlaneDirections = static_cast<int>(NumberOption(args, "--plane-directions", 64, ok));
+  o.ProxyFit = Option(args, "--proxy-fit", "occlusion");
   o.PixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
   o.Exposure = NumberOption(args, "--exposure", 0.0, ok);
   o.Output = Option(args, "-o", "proxygi-render.png");
@@ -151,13 +153,14 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
     (o.BrightLights != "on" && o.BrightLights != "off") ||
     (o.BrightShadows != "rays" && o.BrightShadows != "proxies") ||
     (o.Background != "map" && o.Background != "none") || o.BrightRays < 1 || o.BrightRays > 256 ||
-    o.PlaneDirections < 0 || o.PlaneDirections > 1024)
+    o.PlaneDirections < 0 || o.PlaneDirections > 1024 ||
+    (o.ProxyFit != "bounding" && o.ProxyFit != "occlusion"))
   {
     vtkLogF(ERROR,
       "proxygi render: --mode gpu|vertex|image-space, --scale 1|2|4|8, "
       "--pixel-reference-spp >= 1, 0 <= --self-visibility <= 65536, --bright-lights on|off, "
       "--bright-shadows rays|proxies, 1 <= --bright-rays <= 256, --background map|none, "
-      "0 <= --plane-directions <= 1024");
+      "0 <= --plane-directions <= 1024, --proxy-fit bounding|occlusion");
     return false;
   }
   if (o.IndirectName != "shadowed" && o.IndirectName != "unshadowed" && o.IndirectName != "off")
@@ -430,11 +433,19 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
 
   SceneProxies proxies;
   SetupProgress progress("proxygi render");
-  if (!BuildSceneProxies(scene, loaded, o.Spheres, o.Cache, proxies, error, &progress))
+  if (!BuildSceneProxies(scene, loaded, o.Spheres, o.Cache, proxies, error, &progress,
+        o.ProxyFit == "occlusion" ? ProxyFit::Occlusion : ProxyFit::Bounding))
   {
     vtkLogF(ERROR, "proxygi render: %s%s", error.c_str(),
       progress.Interrupted() ? "; nothing written, nothing cached" : "");
     return progress.Interrupted() ? InterruptedExitCode : 1;
+  }
+  for (const auto& fit : proxies.Fits)
+  {
+    std::printf("proxies of %s fitted for occlusion: rays where spheres and mesh disagree "
+                "%.1f%% -> %.1f%% of those the mesh blocks (bias %+.1f%% -> %+.1f%%)\n",
+      fit.Object.c_str(), 100.0 * fit.ErrorBefore, 100.0 * fit.ErrorAfter, 100.0 * fit.BiasBefore,
+      100.0 * fit.BiasAfter);
   }
   auto receiversIn = SceneReceivers(loaded);
   if (o.Vertex() && o.SelfVisibility > 0)

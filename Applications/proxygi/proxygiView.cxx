@@ -248,8 +248,9 @@ bool Viewer::UseProxies(int spheres, std::string& error)
   {
     SetupProgress progress("proxygi view");
     SceneProxies proxies;
-    if (!BuildSceneProxies(
-          this->Scene, this->Loaded, spheres, this->Options.Cache, proxies, error, &progress))
+    // The radii fitted for occlusion, as proxygi render's default.
+    if (!BuildSceneProxies(this->Scene, this->Loaded, spheres, this->Options.Cache, proxies, error,
+          &progress, ProxyFit::Occlusion))
     {
       return false;
     }

@@ -4,6 +4,7 @@
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 #include "vtkPGIMeshOccluder.h"
+#include "vtkPGIOcclusionFit.h"
 #include "vtkPGIReferenceIllumination.h"
 #include "vtkPGISelfVisibility.h"
 #include "vtkPGISphereHierarchy.h"
@@ -93,6 +94,12 @@ std::string Key(const std::string& description)
   return s.str();
 }
 
+double FieldValue(vtkPolyData* data, const char* name)
+{
+  vtkDataArray* a = data->GetFieldData()->GetArray(name);
+  return a && a->GetNumberOfTuples() > 0 ? a->GetTuple1(0) : 0.0;
+}
+
 std::string Describe(const SceneObject& o)
 {
   std::ostringstream s;
@@ -173,7 +180,8 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(const LoadedScene& load
 SetupMonitor::~SetupMonitor() = default;
 
 bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded, int spheresPerMesh,
-  const std::string& cacheDir, SceneProxies& proxies, std::string& error, SetupMonitor* monitor)
+  const std::string& cacheDir, SceneProxies& proxies, std::string& error, SetupMonitor* monitor,
+  ProxyFit fit)
 {
   const auto t0 = Clock::now();
   if (!cacheDir.empty())
@@ -188,6 +196,8 @@ bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded,
   vtkNew<vtkIntArray> objectIds;
   objectIds->SetName("ObjectId");
   proxies.Planes.clear();
+  proxies.Fits.clear();
+  proxies.Fit = fit;
   proxies.Cached = true;
   for (std::size_t k = 0; k < scene.Objects.size() && k < loaded.Objects.size(); ++k)
   {
@@ -223,11 +233,10 @@ bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded,
       objectIds->InsertNextValue(static_cast<int>(k));
       continue;
     }
-    const std::string cached = cacheDir.empty() ? std::string()
-                                                : cacheDir + "/proxies-" +
-        Key(Describe(object) + '|' + std::to_string(spheresPerMesh) + '|' +
-          std::to_string(mesh->GetNumberOfPoints())) +
-        ".vtp";
+    const std::string key = Describe(object) + '|' + std::to_string(spheresPerMesh) + '|' +
+      std::to_string(mesh->GetNumberOfPoints());
+    const std::string cached =
+      cacheDir.empty() ? std::string() : cacheDir + "/proxies-" + Key(key) + ".vtp";
     vtkSmartPointer<vtkPolyData> set = Exists(cached) ? Read(cached) : nullptr;
     if (!set)
     {
@@ -244,6 +253,38 @@ bool BuildSceneProxies(const SceneDescription& scene, const LoadedScene& loaded,
       {
         Write(set, cached);
       }
+    }
+    if (fit == ProxyFit::Occlusion && set->GetNumberOfPoints() > 0)
+    {
+      const std::string fittedCache = cacheDir.empty()
+        ? std::string()
+        : cacheDir + "/proxies-" + Key(key + "|occlusion") + ".vtp";
+      vtkSmartPointer<vtkPolyData> fitted = Exists(fittedCache) ? Read(fittedCache) : nullptr;
+      if (!fitted)
+      {
+        proxies.Cached = false;
+        vtkNew<vtkPGIOcclusionFit> occlusion;
+        occlusion->SetInputData(set);
+        occlusion->SetMeshData(mesh);
+        if (!Run(occlusion, "fitting the proxies of '" + object.Name + "' for occlusion", monitor,
+              error))
+        {
+          return false;
+        }
+        fitted = occlusion->GetOutput();
+        if (!fittedCache.empty())
+        {
+          Write(fitted, fittedCache);
+        }
+      }
+      SceneProxies::OcclusionFit report;
+      report.Object = object.Name;
+      report.ErrorBefore = FieldValue(fitted, "OcclusionErrorBefore");
+      report.ErrorAfter = FieldValue(fitted, "OcclusionErrorAfter");
+      report.BiasBefore = FieldValue(fitted, "OcclusionBiasBefore");
+      report.BiasAfter = FieldValue(fitted, "OcclusionBiasAfter");
+      proxies.Fits.push_back(report);
+      set = fitted;
     }
     vtkDataArray* r = set->GetPointData()->GetArray("Radius");
     vtkDataArray* level = set->GetPointData()->GetArray("Level");
@@ -452,6 +493,7 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(const SceneDescription&
         Key(sceneKey + '|' + std::to_string(k) + '|' +
           std::to_string(receivers[k]->GetNumberOfPoints()) +
           (proxies ? "|proxies" + std::to_string(proxies->Leaves) : std::string()) +
+          (proxies && proxies->Fit == ProxyFit::Occlusion ? "|occlusion" : "") +
           (seed != 1 ? "|seed" + std::to_string(seed) : std::string())) +
         "-spp" + std::to_string(spp) + ".vtp";
     vtkSmartPointer<vtkPolyData> reference = Exists(cached) ? Read(cached) : nullptr;

@@ -40,6 +40,13 @@ public:
   virtual bool End(vtkAlgorithm* filter) = 0;
 };
 
+/// What a mesh's sphere radii are fitted for.
+enum class ProxyFit
+{
+  Bounding,  ///< every point of the mesh inside a sphere (vtkPGISphereSetApproximation)
+  Occlusion, ///< then scaled to block what the mesh blocks (vtkPGIOcclusionFit)
+};
+
 struct SceneProxies
 {
   /// Leaves of every mesh (vtkPGISphereSetApproximation) and every scene
@@ -50,15 +57,25 @@ struct SceneProxies
   /// then their two half edges (AddBlockerPlane's extent).
   std::vector<std::array<double, 15>> Planes;
   vtkIdType Leaves = 0;
+  ProxyFit Fit = ProxyFit::Bounding;
+  /// With ProxyFit::Occlusion, per mesh: vtkPGIOcclusionFit's held-out
+  /// occlusion error and bias, before and after the fit.
+  struct OcclusionFit
+  {
+    std::string Object;
+    double ErrorBefore = 0.0, ErrorAfter = 0.0, BiasBefore = 0.0, BiasAfter = 0.0;
+  };
+  std::vector<OcclusionFit> Fits;
   double Seconds = 0.0; // building (or reading) them
   bool Cached = false;  // every mesh's set came from the cache
 };
 
-/// Proxies of a loaded scene, `spheresPerMesh` per mesh; the sets are cached
-/// in `cacheDir` (created if missing; "" = no cache). False with a message.
+/// Proxies of a loaded scene, `spheresPerMesh` per mesh, their radii fitted
+/// for `fit`; the sets are cached in `cacheDir` (created if missing; "" = no
+/// cache). False with a message.
 PROXYGISCENESETUP_EXPORT bool BuildSceneProxies(const SceneDescription& scene,
   const LoadedScene& loaded, int spheresPerMesh, const std::string& cacheDir, SceneProxies& proxies,
-  std::string& error, SetupMonitor* monitor = nullptr);
+  std::string& error, SetupMonitor* monitor = nullptr, ProxyFit fit = ProxyFit::Bounding);
 
 /// Everything a scene's cached results depend on (objects, their placement
 /// and albedo, the environment with its rotation and scale, the lights), as

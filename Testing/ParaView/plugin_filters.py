@@ -61,6 +61,33 @@ for i in range(min(spheres.GetNumberOfPoints(), expected.GetNumberOfPoints())):
     worst = max(worst, abs(ra - rb))
 check(worst <= 1e-6, "centres and radii equal the C++ classes' within 1e-6 (largest difference %.3g)" % worst)
 
+# Occlusion Fit: the same radii as vtkPGIOcclusionFit with the same knobs
+# (smaller than the bounding ones), its held-out error lower than before.
+fit = OcclusionFit(Input=proxies, Mesh=bunny)
+check(fit.Samples == 2048 and fit.Directions == 128 and fit.Iterations == 24 and fit.Seed == 1,
+      "Occlusion Fit defaults match vtkPGIOcclusionFit")
+fit.Samples = 256
+fit.UpdatePipeline()
+fitted = servermanager.Fetch(fit)
+field = fitted.GetFieldData()
+before = field.GetArray("OcclusionErrorBefore").GetTuple1(0)
+after = field.GetArray("OcclusionErrorAfter").GetTuple1(0)
+print("      occlusion fit: error %.3f -> %.3f" % (before, after))
+check(after < 0.5 * before, "Occlusion Fit halves the spheres' occlusion error (%.3f -> %.3f)" % (before, after))
+if pythondir:
+    sys.path.insert(0, pythondir)
+    import proxygi as pgi
+    direct_fit = pgi.vtkPGIOcclusionFit()
+    direct_fit.SetInputData(spheres)
+    direct_fit.SetMeshData(servermanager.Fetch(bunny))
+    direct_fit.SetSamples(256)
+    direct_fit.Update()
+    a = fitted.GetPointData().GetArray("Radius")
+    b = direct_fit.GetOutput().GetPointData().GetArray("Radius")
+    worst = max(abs(a.GetTuple1(i) - b.GetTuple1(i)) for i in range(a.GetNumberOfTuples()))
+    check(a.GetNumberOfTuples() == 16 and worst == 0.0,
+          "Occlusion Fit's radii equal vtkPGIOcclusionFit's (largest difference %.3g)" % worst)
+
 tree = ProxyHierarchy(Input=proxies)
 tree.UpdatePipeline()
 levels = servermanager.Fetch(tree).GetPointData().GetArray("Level")

@@ -62,7 +62,9 @@ def orange(a):
 
 
 print("      mean luminance per shot: " + " ".join("%.1f" % lum(S[k]).mean() for k in range(1, 12)))
-check(lum(S[2]).mean() > lum(S[1]).mean() + 2 and (lum(S[2]) < lum(S[1]) - 3).mean() < 0.03,
+# The exposure follows the picture's 95th percentile, so the background map
+# and the lit parts may dim a few levels when the shadows go: not a shadow.
+check(lum(S[2]).mean() > lum(S[1]).mean() + 2 and (lum(S[2]) < lum(S[1]) - 6).mean() < 0.03,
       "s: shadows off lightens the picture and darkens almost nothing (%.1f -> %.1f)"
       % (lum(S[1]).mean(), lum(S[2]).mean()))
 check(left(S[3]) > left(S[1]) + 8 and abs(right(S[3]) - right(S[1])) < 3,
