@@ -168,9 +168,8 @@ vec3 pgiResolveIndirectMapped(vec3 p, vec3 n, vec4 sum, float visibilityDC,
   pgiDiffuseTransfer(n, h);
   for (int k = 0; k < pgiNumPlanes; ++k)
   {
-    vec3 o = pgiPlaneOrigin[k];
     vec3 pn = pgiPlaneNormal[k];
-    float height = (p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z;
+    float height = pgiPlaneHeight(k, p);
     if (!(height > pgiPlaneTolerance))
     {
       continue;

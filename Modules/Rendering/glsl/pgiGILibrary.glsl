@@ -41,6 +41,14 @@ uniform float pgiSinMinAngle;
 uniform float pgiPlaneTolerance;
 uniform int pgiSelfShadowRules;
 
+// Height of p above blocker plane k, written out in the C++ twin's order.
+float pgiPlaneHeight(int k, vec3 p)
+{
+  vec3 o = pgiPlaneOrigin[k];
+  vec3 pn = pgiPlaneNormal[k];
+  return (p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z;
+}
+
 // Environment light: L (per channel), its product matrix M_L and the scaled
 // ZH of the diffuse transfer H (pgiEnvironmentShading.h).
 // Two lights share the matrix texture: light 0 is the environment L (rows
@@ -383,9 +391,8 @@ int pgiVisibilityOf(vec3 p, vec3 n, bool planesInLogSpace, out float g[PGI_SH_N2
   }
   for (int k = 0; planesInLogSpace && k < pgiNumPlanes; ++k)
   {
-    vec3 o = pgiPlaneOrigin[k];
     vec3 pn = pgiPlaneNormal[k];
-    float height = (p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z;
+    float height = pgiPlaneHeight(k, p);
     if (!(height > pgiPlaneTolerance))
     {
       continue;
@@ -418,9 +425,7 @@ bool pgiAboveEveryPlane(vec3 p)
 {
   for (int k = 0; k < pgiNumPlanes; ++k)
   {
-    vec3 o = pgiPlaneOrigin[k];
-    vec3 pn = pgiPlaneNormal[k];
-    if (!((p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z > 0.0))
+    if (!(pgiPlaneHeight(k, p) > 0.0))
     {
       return false;
     }

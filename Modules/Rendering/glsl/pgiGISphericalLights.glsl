@@ -227,9 +227,8 @@ vec3 pgiShadowedIndirect(vec3 p, vec3 n, bool planesInLogSpace)
   }
   for (int k = 0; planesInLogSpace && k < pgiNumPlanes; ++k)
   {
-    vec3 o = pgiPlaneOrigin[k];
     vec3 pn = pgiPlaneNormal[k];
-    float height = (p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z;
+    float height = pgiPlaneHeight(k, p);
     if (height > 0.0)
     {
       pgiAccumulateCap(0.5 * pgiPi, -pn, running);

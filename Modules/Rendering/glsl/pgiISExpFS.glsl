@@ -36,9 +36,8 @@ void main()
     vec3 p = texelFetch(pgiReceiverPosition, px, 0).xyz;
     for (int k = 0; k < pgiNumPlanes; ++k)
     {
-      vec3 o = pgiPlaneOrigin[k];
       vec3 pn = pgiPlaneNormal[k];
-      float height = (p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z;
+      float height = pgiPlaneHeight(k, p);
       if (height > pgiPlaneTolerance)
       {
         pgiAccumulateCap(0.5 * pgiPi, -pn, f);

@@ -101,9 +101,8 @@ vec4 pgiProxyIndirect(vec3 p, vec3 n, vec4 sphere, vec3 albedo, float expansion)
 // the receiver does not see the plane or nothing shadows that point.
 vec3 pgiPlaneShadowScale(vec3 p, vec3 n, int k, bool planesInLogSpace)
 {
-  vec3 o = pgiPlaneOrigin[k];
   vec3 m = pgiPlaneNormal[k];
-  float height = (p.x - o.x) * m.x + (p.y - o.y) * m.y + (p.z - o.z) * m.z;
+  float height = pgiPlaneHeight(k, p);
   vec3 d = n - m;
   float len = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
   if (!(height > 0.0) || !(len > 1e-3))
@@ -144,9 +143,8 @@ vec3 pgiResolveIndirectScaled(vec3 p, vec3 n, vec4 sum, float visibilityDC, bool
   pgiDiffuseTransfer(n, h);
   for (int k = 0; k < pgiNumPlanes; ++k)
   {
-    vec3 o = pgiPlaneOrigin[k];
     vec3 pn = pgiPlaneNormal[k];
-    float height = (p.x - o.x) * pn.x + (p.y - o.y) * pn.y + (p.z - o.z) * pn.z;
+    float height = pgiPlaneHeight(k, p);
     if (!(height > pgiPlaneTolerance))
     {
       continue;
