@@ -4,6 +4,7 @@
 #include "proxygiProgress.h"
 
 #include "vtkPGIOFFReader.h"
+#include "vtkPGIOcclusionFit.h"
 #include "vtkPGISphereHierarchy.h"
 #include "vtkPGISphereSetApproximation.h"
 
@@ -45,13 +46,17 @@ paper's sum over spheres, and the build time.
   --target-e E      instead: the fewest spheres (from N up) with E <= E
   --seed S          random seed (default 1); same seed, same spheres
   --components      one object per connected component
+  --fit F           bounding (default: every point inside a sphere) or
+                    occlusion (then the radii scaled so that the spheres block
+                    what the mesh blocks, by Embree rays: vtkPGIOcclusionFit;
+                    all the spheres stand for the whole mesh)
   --hierarchy       add the bounding hierarchy (branching 4) above the leaves
   --iterations N    variational: at most N clustering rounds (default 100)
   --resolution N    rows along the longest side for E (default 256)
 )";
 
 const std::set<std::string> ValueOptions = { "-o", "-n", "--spheres", "--method", "--target-e",
-  "--seed", "--iterations", "--resolution" };
+  "--seed", "--iterations", "--resolution", "--fit" };
 const std::set<std::string> FlagOptions = { "--components", "--hierarchy", "--help" };
 
 bool EndsWith(const std::string& s, const std::string& suffix)
@@ -127,8 +132,14 @@ int RunProxies(const Args& args)
   const double iterations = NumberOption(args, "--iterations", 100, ok);
   const double resolution = NumberOption(args, "--resolution", 256, ok);
   const std::string methodName = Option(args, "--method", "variational");
+  const std::string fit = Option(args, "--fit", "bounding");
   if (!ok)
   {
+    return 2;
+  }
+  if (fit != "bounding" && fit != "occlusion")
+  {
+    vtkLogF(ERROR, "proxygi proxies: --fit is bounding or occlusion, not '%s'", fit.c_str());
     return 2;
   }
   int method = -1;
@@ -229,6 +240,30 @@ int RunProxies(const Args& args)
     return 1;
   }
   vtkSmartPointer<vtkPolyData> proxies = approx->GetOutput();
+  vtkSmartPointer<vtkPolyData> fitted;
+  if (fit == "occlusion")
+  {
+    vtkNew<vtkPGIOcclusionFit> occlusion;
+    occlusion->AddObserver(vtkCommand::ErrorEvent, reporter);
+    occlusion->SetInputData(proxies);
+    occlusion->SetMeshData(input);
+    occlusion->SetSeed(static_cast<unsigned>(seed));
+    {
+      Progress progress(occlusion, "proxygi proxies");
+      occlusion->Update();
+      interrupted = progress.Interrupted();
+    }
+    if (interrupted)
+    {
+      return InterruptedExitCode;
+    }
+    if (reporter->Errors)
+    {
+      return 1;
+    }
+    fitted = occlusion->GetOutput();
+    proxies = fitted;
+  }
   if (Flag(args, "--hierarchy"))
   {
     vtkNew<vtkPGISphereHierarchy> hierarchy;
@@ -251,6 +286,16 @@ int RunProxies(const Args& args)
   }
   std::printf("total %.2f s (build %.2f s, E at resolution %d)\n", seconds,
     approx->GetTotalBuildTime(), static_cast<int>(resolution));
+  if (fitted)
+  {
+    vtkFieldData* field = fitted->GetFieldData();
+    std::printf("fitted for occlusion: rays where spheres and mesh disagree %.1f%% -> %.1f%% of "
+                "those the mesh blocks (bias %+.1f%% -> %+.1f%%; held-out points)\n",
+      100.0 * field->GetArray("OcclusionErrorBefore")->GetTuple1(0),
+      100.0 * field->GetArray("OcclusionErrorAfter")->GetTuple1(0),
+      100.0 * field->GetArray("OcclusionBiasBefore")->GetTuple1(0),
+      100.0 * field->GetArray("OcclusionBiasAfter")->GetTuple1(0));
+  }
 
   const bool written = WriteThenRename(output,
     [&](const std::string& file)
