@@ -133,14 +133,7 @@ void UploadProxyAlbedos(vtkOpenGLRenderWindow* window, const Blockers& blockers,
 void UploadPlaneLightMaps(
   vtkOpenGLRenderWindow* window, const std::vector<PlaneLightMap>& maps, PlaneLightMapsGL& gl)
 {
-  for (auto* texture : { gl.Grid.Get(), gl.Table.Get() })
-  {
-    if (texture)
-    {
-      texture->ReleaseGraphicsResources(window);
-    }
-  }
-  gl = PlaneLightMapsGL();
+  FreePlaneLightMaps(window, gl);
   const int planes = std::min(static_cast<int>(maps.size()), MaxPlanes);
   const int directions = planes > 0 ? maps[0].GetNumberOfDirections() : 0;
   if (directions == 0)
@@ -216,6 +209,18 @@ void BindPlaneLightMaps(vtkShaderProgram* program, PlaneLightMapsGL& gl)
   program->SetUniform4fv("pgiPlaneMapFrame", MaxPlanes, gl.Frame.data());
   program->SetUniform4fv("pgiPlaneMapSize", MaxPlanes, gl.Size.data());
   program->SetUniform4fv("pgiPlaneMapDual", MaxPlanes, gl.Dual.data());
+}
+
+void FreePlaneLightMaps(vtkWindow* window, PlaneLightMapsGL& gl)
+{
+  for (auto* texture : { gl.Grid.Get(), gl.Table.Get() })
+  {
+    if (texture)
+    {
+      texture->ReleaseGraphicsResources(window);
+    }
+  }
+  gl = PlaneLightMapsGL();
 }
 
 void ReleasePlaneLightMaps(PlaneLightMapsGL& gl)

@@ -99,6 +99,9 @@ PROXYGIRENDERING_EXPORT void UploadPlaneLightMaps(
 /// Binds them to `program` (textures activated; Release deactivates).
 PROXYGIRENDERING_EXPORT void BindPlaneLightMaps(vtkShaderProgram* program, PlaneLightMapsGL& gl);
 PROXYGIRENDERING_EXPORT void ReleasePlaneLightMaps(PlaneLightMapsGL& gl);
+/// Frees their textures and empties `gl` (a new upload, or the mapper's
+/// ReleaseGraphicsResources).
+PROXYGIRENDERING_EXPORT void FreePlaneLightMaps(vtkWindow* window, PlaneLightMapsGL& gl);
 
 /// The indirect-light GLSL (pgiISLibrary.glsl: pgiProxyIndirectTerm,
 /// pgiResolveIndirect and their uniforms), to go after LibrarySource.

@@ -260,14 +260,7 @@ void VertexGI::ReleaseGraphicsResources(vtkWindow* window)
     g.ProxyAlbedo->ReleaseGraphicsResources(window);
     g.ProxyAlbedo = nullptr;
   }
-  for (auto* texture : { g.PlaneMapsGL.Grid.Get(), g.PlaneMapsGL.Table.Get() })
-  {
-    if (texture)
-    {
-      texture->ReleaseGraphicsResources(window);
-    }
-  }
-  g.PlaneMapsGL = PlaneLightMapsGL();
+  FreePlaneLightMaps(window, g.PlaneMapsGL);
   g.Window = nullptr;
   g.ReceiversKey.clear();
   g.UploadedOrder = 0;
