@@ -13,6 +13,7 @@
 #include "pgiBenchPeak.h"
 #include "pgiBrightLights.h"
 #include "pgiEnvironmentMap.h"
+#include "pgiEnvironmentShading.h"
 #include "pgiSHBatch.h"
 #include "pgiSoftShadows.h"
 #ifdef PROXYGI_BENCH_SCENES
@@ -452,7 +453,81 @@ void BenchBrightUpdate(benchmark::State& state, int variant, int planeDirections
   state.counters["receivers"] = static_cast<double>(
     receivers.front()->GetNumberOfPoints() + receivers.back()->GetNumberOfPoints());
 }
+
+// A first update of the three-object scene (cow, dino and armadillo on a
+// plane, forest map, fitted proxies, the CLI's shadowed bounce with its sun
+// taken out; self-visibility off): one filter per object, each building its
+// own bake, against one filter shading the objects in turn (one bake, as
+// `proxygi render` now runs it, or a filter over a multiblock).
+void BenchObjectsFirstUpdate(benchmark::State& state, int order, bool oneFilter)
+{
+  SceneDescription scene;
+  LoadedScene loaded;
+  SceneProxies proxies;
+  std::string error;
+  if (!LoadScene(PROXYGI_BENCH_OBJECTS_SCENE, scene, error) || !BuildScene(scene, loaded, error) ||
+    !BuildSceneProxies(
+      scene, loaded, 64, PROXYGI_BENCH_CACHE, proxies, error, nullptr, ProxyFit::Occlusion))
+  {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  const auto receivers = SceneReceivers(loaded);
+  auto configure = [&](vtkPGIGlobalIllumination* gi)
+  {
+    ConfigureGlobalIllumination(gi, scene, loaded, proxies);
+    gi->GetSettings()->SetOrder(order);
+    gi->GetSettings()->SetIndirectModeToShadowed();
+    gi->GetSettings()->SetHierarchyAngle(25.0);
+  };
+  for (auto _ : state)
+  {
+    if (oneFilter)
+    {
+      vtkNew<vtkPGIGlobalIllumination> gi;
+      configure(gi);
+      for (const auto& r : receivers)
+      {
+        gi->SetInputData(r);
+        gi->Update();
+      }
+    }
+    else
+    {
+      for (const auto& r : receivers)
+      {
+        vtkNew<vtkPGIGlobalIllumination> gi;
+        configure(gi);
+        gi->SetInputData(r);
+        gi->Update();
+      }
+    }
+  }
+  vtkIdType count = 0;
+  for (const auto& r : receivers)
+  {
+    count += r->GetNumberOfPoints();
+  }
+  state.counters["receivers"] = static_cast<double>(count);
+}
 #endif
+
+// The environment's L*H(N) table (the Table shading path), built once per
+// light: a uniform sky's order-n SH, the default 64 x 128 grid.
+void BenchShadingTable(benchmark::State& state, int order)
+{
+  std::vector<double> light(3 * static_cast<std::size_t>(order) * order, 0.0);
+  for (std::size_t i = 0; i < light.size(); ++i)
+  {
+    light[i] = 1.0 / (1.0 + static_cast<double>(i % (order * order)));
+  }
+  const int n2 = order * order;
+  for (auto _ : state)
+  {
+    EnvironmentShading table(order, &light[0], &light[n2], &light[2 * n2]);
+    benchmark::DoNotOptimize(&table);
+  }
+}
 
 // Taking the sun out of the sunrise map (1024 x 512).
 void BenchExtractBrightLights(benchmark::State& state)
@@ -490,6 +565,26 @@ int main(int argc, char** argv)
   }
   benchmark::RegisterBenchmark("BrightLights/extract, sunrise 1024x512", BenchExtractBrightLights)
     ->Unit(benchmark::kMillisecond);
+  for (int order = 4; order <= 8; order += 2)
+  {
+    benchmark::RegisterBenchmark(
+      ("ShadingTable/L*H(N), order:" + std::to_string(order)).c_str(), BenchShadingTable, order)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  }
+#ifdef PROXYGI_BENCH_SCENES
+  for (int order : { 4, 6 })
+  {
+    for (bool one : { false, true })
+    {
+      const std::string name = "FirstUpdate/cow, dino, armadillo, forest, order:" +
+        std::to_string(order) + (one ? ", one filter" : ", a filter per object");
+      benchmark::RegisterBenchmark(name.c_str(), BenchObjectsFirstUpdate, order, one)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    }
+  }
+#endif
 #ifdef PROXYGI_BENCH_SCENES
   const char* bright[] = { "BrightLights/frame, sun in the SH",
     "BrightLights/frame, proxies' cones", "BrightLights/frame, rays, meshes static",

@@ -262,16 +262,21 @@ std::vector<vtkSmartPointer<vtkPolyData>> ShadeOnCPU(
   const SceneDescription& scene, const LoadedScene& loaded, const SceneProxies& proxies,
   vtkPGIOccluder* occluder)
 {
+  // One filter for every object: its bake (the light in SH, its tables, the
+  // spherical lights' first pass) is built once; each new receiver mesh only
+  // costs its own shading. The output is copied, as the next update reuses it.
   std::vector<vtkSmartPointer<vtkPolyData>> shaded;
+  vtkNew<vtkPGIGlobalIllumination> gi;
+  ConfigureGlobalIllumination(gi, scene, loaded, proxies);
+  gi->SetSettings(settings);
+  gi->SetOccluder(occluder);
   for (auto& object : receivers)
   {
-    vtkNew<vtkPGIGlobalIllumination> gi;
     gi->SetInputData(object);
-    ConfigureGlobalIllumination(gi, scene, loaded, proxies);
-    gi->SetSettings(settings);
-    gi->SetOccluder(occluder);
     gi->Update();
-    shaded.push_back(gi->GetOutput());
+    auto copy = vtkSmartPointer<vtkPolyData>::New();
+    copy->DeepCopy(gi->GetOutput());
+    shaded.push_back(copy);
     if (shaded.size() == 1)
     {
       for (const std::string& line : gi->GetPlan())
