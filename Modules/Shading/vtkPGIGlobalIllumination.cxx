@@ -401,6 +401,21 @@ struct vtkPGIGlobalIllumination::ShadeBuffers
 {
   vtkSMPThreadLocal<ShadeScratch> PerThread;
   std::vector<proxygi::PlaneLightMap> PlaneMaps; // one per blocker plane
+  // What PlaneMaps were built from: the bake's build, the occluder and its
+  // MTime, the effective settings' MTime. A new receiver mesh alone (the
+  // next object of a scene) reuses them.
+  struct MapKey
+  {
+    int Builds = -1;
+    const vtkObject* Occluder = nullptr;
+    vtkMTimeType OccluderTime = 0, SettingsTime = 0;
+    bool operator==(const MapKey& o) const
+    {
+      return Builds == o.Builds && Occluder == o.Occluder && OccluderTime == o.OccluderTime &&
+        SettingsTime == o.SettingsTime;
+    }
+  } PlaneMapsKey;
+  std::string PlaneMapsLine;
 };
 
 // Receiver clusters and their hierarchy cuts (one blocker list each), and
@@ -971,7 +986,17 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   const int planeDirections = settings->GetPlaneBounceDirections();
   const bool planeMaps = scalePlanes && needVisibility && planeDirections > 0;
   std::vector<proxygi::PlaneLightMap>& maps = this->Scratch->PlaneMaps;
-  if (planeMaps)
+  ShadeBuffers::MapKey mapKey;
+  mapKey.Builds = this->Bake->GetNumberOfBuilds();
+  mapKey.Occluder = this->Occluder;
+  mapKey.OccluderTime = this->Occluder ? this->Occluder->GetMTime() : 0;
+  mapKey.SettingsTime = settings->GetMTime();
+  if (planeMaps && mapKey == this->Scratch->PlaneMapsKey)
+  {
+    this->Plan.push_back(this->Scratch->PlaneMapsLine +
+      ", reused: same proxies, light, occluder and settings as the last update");
+  }
+  else if (planeMaps)
   {
     const auto start = std::chrono::steady_clock::now();
     proxygi::PlaneLightMapShading how;
@@ -992,6 +1017,8 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
                               .count())
          << " ms)";
     this->Plan.push_back(line.str());
+    this->Scratch->PlaneMapsKey = mapKey;
+    this->Scratch->PlaneMapsLine = line.str();
   }
   else if (scalePlanes && needVisibility)
   {

@@ -261,5 +261,53 @@ int TestPlaneLightMap(int, char*[])
   PGI_BELOW(lower[2], 0.8 * lower[1]);
   PGI_BELOW(upper[2], upper[1]);
   PGI_BELOW(lower[2], 0.05);
+
+  // The maps depend on the proxies, light, planes and settings only: a
+  // second receiver mesh on the same filter reuses them and gets what a
+  // fresh filter gives; a changed setting or proxy rebuilds them.
+  {
+    vtkNew<vtkSphereSource> small;
+    small->SetCenter(1.2, 0.0, 0.4);
+    small->SetRadius(0.3);
+    small->Update();
+    auto configure = [&](vtkPGIGlobalIllumination* f)
+    {
+      f->SetProxiesData(proxy);
+      f->SetLighting(sky);
+      f->AddBlockerPlane(o, z, albedo, e1, e2);
+    };
+    vtkNew<vtkPGIGlobalIllumination> gi, fresh;
+    configure(gi);
+    configure(fresh);
+    gi->SetInputConnection(ball->GetOutputPort());
+    gi->Update();
+    PGI_CHECK(!pgitest::Says(gi->GetPlan(), "reused: same proxies", false));
+    gi->SetInputConnection(small->GetOutputPort());
+    gi->Update();
+    PGI_CHECK(pgitest::Says(gi->GetPlan(), "reused: same proxies", true));
+    fresh->SetInputConnection(small->GetOutputPort());
+    fresh->Update();
+    vtkDataArray* a = gi->GetOutput()->GetPointData()->GetArray("Radiance");
+    vtkDataArray* b = fresh->GetOutput()->GetPointData()->GetArray("Radiance");
+    double worst = 0.0;
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        worst = std::max(worst, std::abs(a->GetComponent(i, c) - b->GetComponent(i, c)));
+      }
+    }
+    PGI_CHECK(worst == 0.0);
+    gi->GetSettings()->SetPlaneBounceDirections(32);
+    gi->Update();
+    PGI_CHECK(pgitest::Says(gi->GetPlan(), "averaged over 32", true));
+    PGI_CHECK(!pgitest::Says(gi->GetPlan(), "reused: same proxies", false));
+    gi->Update();
+    radius->SetValue(0, 0.9f);
+    radius->Modified();
+    gi->Modified();
+    gi->Update();
+    PGI_CHECK(!pgitest::Says(gi->GetPlan(), "reused: same proxies", false));
+  }
   return pgitest::Result();
 }
