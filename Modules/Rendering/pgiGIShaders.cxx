@@ -246,6 +246,7 @@ vtkPGIGISettings::Support KernelSupport(const char* backend, int maxOrder)
   s.Hierarchy = false;
   s.SelfVisibility = false;
   s.BrightLights = false;
+  s.IndirectOrder = false;
   s.LightCloud = false;
   s.IndirectOperators = 1u << vtkPGIGISettings::INDIRECT_AVERAGED;
   return s;

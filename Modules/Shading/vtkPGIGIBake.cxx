@@ -125,6 +125,7 @@ bool vtkPGIGIBake::Update()
   proxygi::BakedScene previous = std::move(this->Scene);
   this->Scene = proxygi::BakedScene();
   this->Scene.Order = this->Settings->GetOrder();
+  this->Scene.IndirectOrder = this->Settings->GetEffectiveIndirectOrder();
   // Without a lighting: one default kept across builds, so its projection is too.
   if (!this->Lighting && !this->DefaultLighting)
   {
@@ -288,6 +289,7 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting, proxygi::BakedScene& p
     key.Time = std::max(key.Time, lighting->GetEnvironmentImage()->GetMTime());
   }
   key.Order = order;
+  key.IndirectOrder = b.IndirectOrder;
   key.Path = this->Settings->GetShadingPath();
   key.PlaneBlocking = this->Settings->GetPlaneBlocking();
   key.Planes = this->Planes;
@@ -305,6 +307,7 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting, proxygi::BakedScene& p
     b.Shading = std::move(previous.Shading);
     b.BounceOpenShading = std::move(previous.BounceOpenShading);
     b.BounceShading = std::move(previous.BounceShading);
+    b.IndirectShading = std::move(previous.IndirectShading);
     b.BrightLights = std::move(previous.BrightLights);
     b.BrightestFraction = previous.BrightestFraction;
     b.BrightFraction = previous.BrightFraction;
@@ -386,6 +389,23 @@ void vtkPGIGIBake::ProjectEnvironment(const proxygi::EnvironmentMap& map)
       order, &bounceAbove[0], &bounceAbove[n2], &bounceAbove[2 * n2], path);
     above = bounceAbove.data();
   }
+  if (b.IndirectOrder == order)
+  {
+    b.IndirectShading = b.BounceShading;
+  }
+  else
+  {
+    // The first k^2 coefficients of each channel: the order-n product with
+    // the planes' steps, truncated, is closer than one taken at order k.
+    const int k2 = b.IndirectOrder * b.IndirectOrder;
+    std::vector<double> low(3 * static_cast<std::size_t>(k2));
+    for (int c = 0; c < 3; ++c)
+    {
+      std::copy(above + c * n2, above + c * n2 + k2, low.begin() + c * k2);
+    }
+    b.IndirectShading = std::make_shared<proxygi::EnvironmentShading>(
+      b.IndirectOrder, &low[0], &low[k2], &low[2 * k2], path);
+  }
   b.Secondary = std::make_shared<proxygi::SecondaryLights>(
     order, above, above + n2, above + 2 * n2, b.PlanesInLight ? nullptr : &b.SceneBlockers);
   b.InterleavedResponse.resize(3 * static_cast<std::size_t>(n2));
@@ -415,6 +435,8 @@ void vtkPGIGIBake::SetKernel()
   k.MinAngle = static_cast<float>(s->GetMinBlockerAngle());
   k.SelfShadowRules = s->GetSelfShadowRules();
   k.PlanesInLogSpace = !b.PlanesInLight;
+  b.IndirectKernel = k;
+  b.IndirectKernel.Order = b.IndirectOrder;
 }
 
 void vtkPGIGIBake::PlanEffects(vtkPGILighting* lighting)
@@ -547,7 +569,7 @@ bool vtkPGIGIBake::PrepareSphericalLights()
   {
     return true;
   }
-  const proxygi::ShadowedIndirect kernel(b.Kernel,
+  const proxygi::ShadowedIndirect kernel(b.IndirectKernel,
     s->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT
       ? proxygi::SphericalLightBlocking::PerObject
       : proxygi::SphericalLightBlocking::PerSphere);
@@ -563,8 +585,8 @@ bool vtkPGIGIBake::PrepareSphericalLights()
   std::string summary, bad;
   const std::string why =
     proxygi::PrepareSphericalLights(this->Proxies, b.UseHierarchy ? allIds : b.LeafIds,
-      b.UseHierarchy ? this->Proxies->GetPointData()->GetArray("Level") : nullptr, b.Order,
-      s->GetAlbedoArrayName(), s->GetDefaultProxyAlbedo(), *b.BounceShading, b.Dark,
+      b.UseHierarchy ? this->Proxies->GetPointData()->GetArray("Level") : nullptr, b.IndirectOrder,
+      s->GetAlbedoArrayName(), s->GetDefaultProxyAlbedo(), *b.IndirectShading, b.Dark,
       b.SceneBlockers, b.Locals.Count() ? &b.Locals : nullptr, kernel, b.Lights, summary, bad);
   if (!bad.empty())
   {
@@ -573,7 +595,10 @@ bool vtkPGIGIBake::PrepareSphericalLights()
   }
   b.RunShadowed = why.empty();
   b.SphericalLightsSummary = b.RunShadowed ? summary : "skipped: " + why;
-  b.Plan.push_back(b.RunShadowed ? "indirect light (shadowed): " + summary
+  const std::string order = b.IndirectOrder == b.Order ? std::string()
+                                                       : ", the bounce at SH order " +
+      std::to_string(b.IndirectOrder) + " (shadows at " + std::to_string(b.Order) + ")";
+  b.Plan.push_back(b.RunShadowed ? "indirect light (shadowed): " + summary + order
                                  : "indirect light (shadowed): skipped (" + why + ")");
   if (b.RunPlaneBounce)
   {
@@ -583,7 +608,7 @@ bool vtkPGIGIBake::PrepareSphericalLights()
   if (b.RunShadowed && b.UseHierarchy)
   {
     // The leaves alone: what receivers use without a cut, and the ratios' reference.
-    const std::size_t n2s = 3 * static_cast<std::size_t>(b.Order) * b.Order;
+    const std::size_t n2s = 3 * static_cast<std::size_t>(b.IndirectOrder) * b.IndirectOrder;
     for (std::size_t i = 0; i < b.Lights.Count(); ++i)
     {
       if (b.Lights.Level[i] != 0)
@@ -596,7 +621,7 @@ bool vtkPGIGIBake::PrepareSphericalLights()
       b.LeafLights.Radiance.insert(b.LeafLights.Radiance.end(), b.Lights.Radiance.begin() + i * n2s,
         b.Lights.Radiance.begin() + (i + 1) * n2s);
     }
-    b.LeafLights.Order = b.Order;
+    b.LeafLights.Order = b.IndirectOrder;
     b.LeafLights.Finish();
   }
   return true;

@@ -92,6 +92,13 @@ struct PROXYGISHADING_EXPORT BakedScene
   std::vector<float> InterleavedResponse;
   /// The kernel settings of this scene (PlanesInLogSpace = !PlanesInLight).
   SoftShadowSettings Kernel;
+  /// The shadowed bounce's order (settings IndirectOrder; Order when not
+  /// below it), its kernel (Kernel at that order) and its light: the bounce
+  /// light above the planes, truncated to that order (BounceShading when
+  /// the orders agree). The spherical lights' Radiance has this order.
+  int IndirectOrder = 0;
+  SoftShadowSettings IndirectKernel;
+  std::shared_ptr<const EnvironmentShading> IndirectShading;
   LocalEmitters Locals;
   /// Shadowed bounce: every light (with a hierarchy: every node, with Level)
   /// after its first pass; LeafLights the leaves alone (hierarchy only).
@@ -206,14 +213,15 @@ protected:
   {
     const void* Environment = nullptr;
     vtkMTimeType Time = 0;
-    int Order = 0, Path = -1, PlaneBlocking = -1;
+    int Order = 0, IndirectOrder = 0, Path = -1, PlaneBlocking = -1;
     std::vector<double> Planes;
     std::vector<double> Bright; // on, fraction, count
     bool operator==(const LightKey& o) const
     {
       return this->Environment == o.Environment && this->Time == o.Time && this->Order == o.Order &&
-        this->Path == o.Path && this->PlaneBlocking == o.PlaneBlocking &&
-        this->Planes == o.Planes && this->Bright == o.Bright;
+        this->IndirectOrder == o.IndirectOrder && this->Path == o.Path &&
+        this->PlaneBlocking == o.PlaneBlocking && this->Planes == o.Planes &&
+        this->Bright == o.Bright;
     }
   };
   LightKey LastLight;

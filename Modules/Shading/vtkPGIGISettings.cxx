@@ -95,6 +95,7 @@ void vtkPGIGISettings::DeepCopy(vtkPGIGISettings* o)
   this->SetIndirectMode(o->IndirectMode);
   this->SetIndirectOperator(o->IndirectOperator);
   this->SetSphericalLightBlocking(o->SphericalLightBlocking);
+  this->SetIndirectOrder(o->IndirectOrder);
   this->SetPlaneBounceShadows(o->PlaneBounceShadows);
   this->SetPlaneBounceDirections(o->PlaneBounceDirections);
   this->SetPlaneBlocking(o->PlaneBlocking);
@@ -236,6 +237,14 @@ bool vtkPGIGISettings::Resolve(const Support& s, int planes, vtkPGIGISettings* e
     note("SphericalLightBlocking", "the spherical lights block per sphere");
     e->SetSphericalLightBlocking(BLOCKING_PER_SPHERE);
   }
+  if (!s.IndirectOrder && e->GetEffectiveIndirectOrder() != e->Order)
+  {
+    if (shadowed)
+    {
+      note("IndirectOrder", "the bounce runs at the shading order " + std::to_string(e->Order));
+    }
+    e->SetIndirectOrder(0);
+  }
   if (!s.PlaneBounceShadows && e->Indirect && planes > 0 && this->PlaneBounceShadows)
   {
     note("PlaneBounceShadows", "the planes' bounce is not dimmed by the proxies' shadows");
@@ -328,6 +337,8 @@ void vtkPGIGISettings::PrintSelf(ostream& os, vtkIndent indent)
   os << indent
      << "SphericalLightBlocking: " << SphericalLightBlockingName(this->SphericalLightBlocking)
      << "\n";
+  os << indent << "IndirectOrder: " << this->IndirectOrder << " (runs at "
+     << this->GetEffectiveIndirectOrder() << ")\n";
   os << indent << "PlaneBounceShadows: " << this->PlaneBounceShadows << " ("
      << this->PlaneBounceDirections << " directions)\n";
   os << indent << "PlaneBlocking: " << PlaneBlockingName(this->PlaneBlocking) << "\n";

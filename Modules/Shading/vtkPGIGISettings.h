@@ -32,8 +32,9 @@
  * | IndirectMode | UNSHADOWED | UNSHADOWED (Sloan 2007) or SHADOWED (Guerrero 2008) |
  * | IndirectOperator | AVERAGED | POINT_SAMPLED, AVERAGED (D(theta)), EXACT (M(theta)) |
  * | SphericalLightBlocking | PER_SPHERE | SHADOWED: lights block per sphere or per object |
- * | PlaneBounceShadows | on | planes reflect less where the proxies shadow them |
- * | PlaneBounceDirections | 64 | planes' light averaged per receiver (pgiPlaneLightMap.h) |
+ * | IndirectOrder | 0 (= Order) | SH order of the shadowed bounce (its lights and their exps), at
+ * most Order; CPU filter | | PlaneBounceShadows | on | planes reflect less where the proxies shadow
+ * them | | PlaneBounceDirections | 64 | planes' light averaged per receiver (pgiPlaneLightMap.h) |
  * | PlaneBlocking | PLANES_IN_LIGHT | planes as steps in the light, or caps in log space |
  * | LocalLights | on | the lighting's spherical and point lights |
  * | LightCloud | on | point lights' indirect light from a light cloud (SetLocalLightTransfer) |
@@ -137,6 +138,17 @@ public:
   vtkGetMacro(IndirectOperator, int);
   vtkSetClampMacro(SphericalLightBlocking, int, BLOCKING_PER_SPHERE, BLOCKING_PER_OBJECT);
   vtkGetMacro(SphericalLightBlocking, int);
+  /// The shadowed bounce's SH order: 0 (or >= Order) runs it at Order.
+  /// The bounce is low-frequency, and its second pass (an exp per light
+  /// and receiver) costs ~n^4: order 6 shadows with an order-4 bounce.
+  vtkSetClampMacro(IndirectOrder, int, 0, 8);
+  vtkGetMacro(IndirectOrder, int);
+  /// What runs: IndirectOrder if set and below Order, else Order.
+  int GetEffectiveIndirectOrder() const
+  {
+    return this->IndirectOrder > 0 && this->IndirectOrder < this->Order ? this->IndirectOrder
+                                                                        : this->Order;
+  }
   vtkSetMacro(PlaneBounceShadows, bool);
   vtkGetMacro(PlaneBounceShadows, bool);
   vtkBooleanMacro(PlaneBounceShadows, bool);
@@ -209,6 +221,7 @@ public:
     unsigned IndirectModes = 0x3;
     unsigned IndirectOperators = 0x7;
     bool SphericalLightBlocking = true;
+    bool IndirectOrder = true; // false: the bounce runs at Order
     bool PlaneBounceShadows = true;
     bool PlaneBounceDirections = true; // and the planes' extent; false: one point
     unsigned PlaneBlockings = 0x3;
@@ -255,6 +268,7 @@ protected:
   int IndirectMode = INDIRECT_MODE_UNSHADOWED;
   int IndirectOperator = INDIRECT_AVERAGED;
   int SphericalLightBlocking = BLOCKING_PER_SPHERE;
+  int IndirectOrder = 0;
   bool PlaneBounceShadows = true;
   int PlaneBounceDirections = 64;
   int PlaneBlocking = PLANES_IN_LIGHT;

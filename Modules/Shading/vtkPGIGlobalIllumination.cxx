@@ -836,7 +836,7 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
   }
   cl.Of = f.Of;
   const int clusters = static_cast<int>(f.Centres.size());
-  const proxygi::ShadowedIndirect shadowedIndirect(b.Kernel,
+  const proxygi::ShadowedIndirect shadowedIndirect(b.IndirectKernel,
     this->Effective->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT
       ? proxygi::SphericalLightBlocking::PerObject
       : proxygi::SphericalLightBlocking::PerSphere);
@@ -919,7 +919,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   const bool shadowsOn = settings->GetShadows();
   const char* albedoArray = settings->GetAlbedoArrayName();
   const double* defaultAlbedo = settings->GetDefaultAlbedo();
-  const proxygi::ShadowedIndirect shadowedIndirect(b.Kernel,
+  const proxygi::ShadowedIndirect shadowedIndirect(b.IndirectKernel,
     settings->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT
       ? proxygi::SphericalLightBlocking::PerObject
       : proxygi::SphericalLightBlocking::PerSphere);

@@ -145,6 +145,16 @@ check(shaded3.GetPointData().GetArray("Visibility").GetNumberOfComponents() == 9
 plan3 = shaded3.GetFieldData().GetAbstractArray("Plan")
 check(any("1 planes" in plan3.GetValue(i) for i in range(plan3.GetNumberOfValues())),
       "the blocker plane reaches the filter")
+# The shadowed bounce's own order reaches the filter too.
+gi.IndirectMode = "Shadowed"
+gi.IndirectOrder = 2
+gi.UpdatePipeline()
+plan2 = servermanager.Fetch(gi).GetFieldData().GetAbstractArray("Plan")
+check(any("the bounce at SH order 2 (shadows at 3)" in plan2.GetValue(i)
+          for i in range(plan2.GetNumberOfValues())),
+      "IndirectOrder 2 reaches the filter (the bounce at SH order 2)")
+gi.IndirectMode = "Unshadowed"
+gi.IndirectOrder = 0
 gi.EnvironmentFileName = image
 gi.UpdatePipeline()
 lit = servermanager.Fetch(gi).GetPointData().GetArray("Radiance").GetRange(0)

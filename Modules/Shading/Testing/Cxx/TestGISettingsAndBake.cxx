@@ -90,6 +90,30 @@ void TestResolve()
     "IndirectMode: shadowed indirect light is not available; "
     "unshadowed runs"));
   PGI_CHECK(e->GetIndirectMode() == vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+  // The bounce's own order: said where a shadowed bounce runs without it;
+  // at or above Order there is nothing to replace.
+  {
+    vtkPGIGISettings::Support shadowedGpu = gpu;
+    shadowedGpu.IndirectModes = 0x3;
+    shadowedGpu.IndirectOrder = false;
+    vtkNew<vtkPGIGISettings> r, re;
+    r->SetOrder(6);
+    r->SetIndirectOrder(4);
+    r->SetIndirectModeToShadowed();
+    PGI_CHECK(r->GetEffectiveIndirectOrder() == 4);
+    std::vector<std::string> said;
+    r->Resolve(shadowedGpu, 0, re, said);
+    PGI_CHECK(Mentions(said, "IndirectOrder: the bounce runs at the shading order 6"));
+    PGI_CHECK(re->GetIndirectOrder() == 0 && re->GetEffectiveIndirectOrder() == 6);
+    r->SetIndirectOrder(8);
+    said.clear();
+    r->Resolve(shadowedGpu, 0, re, said);
+    PGI_CHECK(said.empty() && re->GetEffectiveIndirectOrder() == 6);
+    r->SetIndirectOrder(4);
+    said.clear();
+    r->Resolve(vtkPGIGlobalIllumination::GetSupport(), 0, re, said);
+    PGI_CHECK(said.empty() && re->GetEffectiveIndirectOrder() == 4);
+  }
   // The operator matters for the unshadowed model only.
   s->SetIndirectModeToUnshadowed();
   s->SetIndirectOperator(vtkPGIGISettings::INDIRECT_EXACT);

@@ -22,6 +22,7 @@ struct Mode
 {
   const char* Name;
   int IndirectMode, Operator, Blocking;
+  int Order = 4, IndirectOrder = 0;
 };
 const Mode Modes[] = {
   { "unshadowed, point-sampled", vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED,
@@ -34,6 +35,8 @@ const Mode Modes[] = {
     vtkPGIGISettings::INDIRECT_AVERAGED, vtkPGIGISettings::BLOCKING_PER_SPHERE },
   { "shadowed, per object", vtkPGIGISettings::INDIRECT_MODE_SHADOWED,
     vtkPGIGISettings::INDIRECT_AVERAGED, vtkPGIGISettings::BLOCKING_PER_OBJECT },
+  { "shadowed, order 6, bounce order 4", vtkPGIGISettings::INDIRECT_MODE_SHADOWED,
+    vtkPGIGISettings::INDIRECT_AVERAGED, vtkPGIGISettings::BLOCKING_PER_SPHERE, 6, 4 },
 };
 
 vtkSmartPointer<vtkPolyData> Run(const pgitest::HardScene& scene, vtkPGILighting* lighting,
@@ -51,6 +54,8 @@ vtkSmartPointer<vtkPolyData> Run(const pgitest::HardScene& scene, vtkPGILighting
     gi->GetSettings()->SetIndirectMode(mode->IndirectMode);
     gi->GetSettings()->SetIndirectOperator(mode->Operator);
     gi->GetSettings()->SetSphericalLightBlocking(mode->Blocking);
+    gi->GetSettings()->SetOrder(mode->Order);
+    gi->GetSettings()->SetIndirectOrder(mode->IndirectOrder);
   }
   else
   {

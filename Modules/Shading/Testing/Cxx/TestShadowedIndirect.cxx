@@ -535,6 +535,38 @@ int TestShadowedIndirect(int argc, char* argv[])
       PGI_NEAR(
         total->GetComponent(k, 0), direct->GetComponent(k, 0) + bounce->GetComponent(k, 0), 1e-5);
     }
+    // The bounce at order 4 under order-6 shadows (IndirectOrder): the
+    // uniform light has no band above 0, so it is the order-4 bounce; the
+    // whole order-6 bounce differs (its H and exp run at 6).
+    auto bounceAt = [&](int order, int indirectOrder)
+    {
+      vtkNew<GI> at;
+      at->SetInputData(receivers);
+      at->SetProxiesConnection(sampler->GetOutputPort());
+      at->GetSettings()->SetDefaultAlbedo(1, 1, 1);
+      at->GetSettings()->SetDefaultProxyAlbedo(1, 1, 1);
+      at->GetSettings()->SetIndirectModeToShadowed();
+      at->GetSettings()->SetOrder(order);
+      at->GetSettings()->SetIndirectOrder(indirectOrder);
+      at->Update();
+      PGI_CHECK(PlanHas(at, "the bounce at SH order 4 (shadows at 6)") ==
+        (order == 6 && indirectOrder == 4));
+      vtkNew<vtkFloatArray> copy;
+      copy->DeepCopy(at->GetOutput()->GetPointData()->GetArray("IndirectShadowed"));
+      return vtkSmartPointer<vtkFloatArray>(copy.Get());
+    };
+    vtkSmartPointer<vtkFloatArray> six = bounceAt(6, 0), sixFour = bounceAt(6, 4),
+                                   sixEight = bounceAt(6, 8);
+    double farthest = 0.0;
+    for (int k = 0; k < 4; ++k)
+    {
+      const double four = bounce->GetComponent(k, 0);
+      PGI_NEAR(sixFour->GetComponent(k, 0), four, 1e-5 * four);
+      PGI_NEAR(sixEight->GetComponent(k, 0), six->GetComponent(k, 0), 0.0); // 8 > 6: runs at 6
+      farthest = std::max(farthest, std::abs(six->GetComponent(k, 0) / four - 1));
+    }
+    std::printf("order 6 bounce against order 4: at most %.2f%% apart\n", 100 * farthest);
+    PGI_CHECK(farthest > 1e-3);
     // Without the sampler's arrays the samples lie on the proxy itself.
     vtkNew<GI> own;
     own->SetInputData(receivers);
