@@ -454,31 +454,42 @@ void BenchBrightUpdate(benchmark::State& state, int variant, int planeDirections
     receivers.front()->GetNumberOfPoints() + receivers.back()->GetNumberOfPoints());
 }
 
-// A first update of the three-object scene (cow, dino and armadillo on a
-// plane, forest map, fitted proxies, the CLI's shadowed bounce with its sun
-// taken out; self-visibility off): one filter per object, each building its
-// own bake, against one filter shading the objects in turn (one bake, as
-// `proxygi render` now runs it, or a filter over a multiblock).
-void BenchObjectsFirstUpdate(benchmark::State& state, int order, bool oneFilter)
+// A first update of a scene as `proxygi render --mode vertex` runs it:
+// fitted proxies, the meshes' own visibility traced (256 rays, cached),
+// the shadowed bounce, cuts at 25 degrees, the sun taken out and shadowed
+// by rays. `scene` 0: the default scene; 1: cow, dino and armadillo on a
+// plane under the forest. One filter per object, each building its own
+// bake, or one filter shading the objects in turn (one bake); the bounce
+// at `indirectOrder` (0: the shading order).
+void BenchFirstUpdate(
+  benchmark::State& state, int which, int order, int indirectOrder, bool oneFilter)
 {
-  SceneDescription scene;
+  SceneDescription scene = DefaultScene();
   LoadedScene loaded;
   SceneProxies proxies;
   std::string error;
-  if (!LoadScene(PROXYGI_BENCH_OBJECTS_SCENE, scene, error) || !BuildScene(scene, loaded, error) ||
-    !BuildSceneProxies(
-      scene, loaded, 64, PROXYGI_BENCH_CACHE, proxies, error, nullptr, ProxyFit::Occlusion))
+  double seconds = 0.0;
+  std::vector<vtkSmartPointer<vtkPolyData>> receivers;
+  const bool ok = (which == 0 || LoadScene(PROXYGI_BENCH_OBJECTS_SCENE, scene, error)) &&
+    BuildScene(scene, loaded, error) &&
+    BuildSceneProxies(
+      scene, loaded, 64, PROXYGI_BENCH_CACHE, proxies, error, nullptr, ProxyFit::Occlusion) &&
+    ((receivers = SceneReceivers(loaded)),
+      AddSelfVisibility(scene, receivers, order, 256, PROXYGI_BENCH_CACHE, seconds, error));
+  if (!ok)
   {
     state.SkipWithError(error.c_str());
     return;
   }
-  const auto receivers = SceneReceivers(loaded);
+  vtkSmartPointer<vtkPGIOccluder> occluder = SceneOccluder(receivers);
   auto configure = [&](vtkPGIGlobalIllumination* gi)
   {
     ConfigureGlobalIllumination(gi, scene, loaded, proxies);
     gi->GetSettings()->SetOrder(order);
+    gi->GetSettings()->SetIndirectOrder(indirectOrder);
     gi->GetSettings()->SetIndirectModeToShadowed();
     gi->GetSettings()->SetHierarchyAngle(25.0);
+    gi->SetOccluder(occluder);
   };
   for (auto _ : state)
   {
@@ -573,13 +584,20 @@ int main(int argc, char** argv)
       ->UseRealTime();
   }
 #ifdef PROXYGI_BENCH_SCENES
-  for (int order : { 4, 6 })
+  // (order, bounce order, one filter): before and after sharing the bake,
+  // and the bounce at order 4 under order-6 shadows.
+  const int firstUpdates[5][3] = { { 4, 0, 0 }, { 4, 0, 1 }, { 6, 0, 0 }, { 6, 0, 1 },
+    { 6, 4, 1 } };
+  for (int which : { 0, 1 })
   {
-    for (bool one : { false, true })
+    for (const auto& f : firstUpdates)
     {
-      const std::string name = "FirstUpdate/cow, dino, armadillo, forest, order:" +
-        std::to_string(order) + (one ? ", one filter" : ", a filter per object");
-      benchmark::RegisterBenchmark(name.c_str(), BenchObjectsFirstUpdate, order, one)
+      const std::string name = std::string("FirstUpdate/") +
+        (which == 0 ? "default scene" : "cow, dino, armadillo, forest") +
+        ", order:" + std::to_string(f[0]) +
+        (f[1] ? ", bounce order:" + std::to_string(f[1]) : std::string()) +
+        (f[2] ? ", one filter" : ", a filter per object");
+      benchmark::RegisterBenchmark(name.c_str(), BenchFirstUpdate, which, f[0], f[1], f[2] == 1)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
     }

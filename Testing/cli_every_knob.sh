@@ -126,6 +126,12 @@ check gpu 'says:^note: --bright-lights does not apply to --mode gpu' --bright-li
 check image-space 'says:^note: --bright-shadows does not apply to --mode image-space' \
   --bright-shadows proxies
 check gpu 'says:^note: --bright-rays does not apply to --mode gpu' --bright-rays 4
+check vertex changes --indirect-order 2
+check gpu 'says:^not honoured: IndirectOrder: the bounce runs at the shading order' \
+  --indirect shadowed --indirect-order 2
+check gpu "says:^note: --indirect-order does not apply to --indirect unshadowed" --indirect-order 2
+check image-space 'says:^note: --indirect-order does not apply to --mode image-space' \
+  --indirect-order 2
 check vertex changes --plane-directions 0
 check vertex changes --plane-directions 16
 check gpu changes --plane-directions 0

@@ -45,8 +45,9 @@ an option a mode has no use for as "note: ... does not apply".
 
   -o FILE             output PNG (default proxygi-render.png)
   --cache DIR         proxies and references are cached here (proxygi-cache)
-  --order N           SH order 2..8 (default 4; the GPU mapper runs up to 6,
-                      the image-space pass up to 4, and says so)
+  --order N           SH order 2..8 (default 6 in vertex mode, 4 in the GPU
+                      modes; the GPU mapper runs up to 6, the image-space
+                      pass up to 4, and says so)
   --method M          exp method: HYB (default), OL, PS*, PS (the GPU modes
                       run HYB and say so)
   --spheres N         proxy spheres per mesh (default 64)
@@ -58,6 +59,9 @@ an option a mode has no use for as "note: ... does not apply".
   --indirect M        one-bounce light: shadowed (spherical lights, Guerrero
                       2008; default in vertex and gpu), unshadowed (Sloan 2007;
                       default and only one in image-space), off
+  --indirect-order N  the shadowed bounce's SH order (vertex mode; default 4,
+                      0: --order); below --order it is cheaper: the bounce is
+                      smooth, its second pass costs ~N^4 per light and vertex
   --hierarchy DEG     hierarchy cuts (vertex mode): receiver clusters use the
                       cut whose spheres subtend less than DEG (default 25 in
                       vertex mode, 0 = all leaves; 0 in the GPU modes)

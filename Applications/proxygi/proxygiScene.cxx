@@ -79,6 +79,7 @@ struct RenderOptions
   std::string ProxyFit = "occlusion"; // the spheres' radii: fitted for occlusion, or bounding
   int BrightRays = 16;
   int PlaneDirections = 64; // the planes' bounce: look-ups per receiver (0: one point)
+  int IndirectOrder = 0;    // the shadowed bounce's SH order (0: --order)
   int ExpMethod = vtkPGIGISettings::EXP_HYB;
   std::string MethodName = "HYB", IndirectName = "shadowed";
   double HierarchyAngle = 25.0, Exposure = 0.0;
@@ -112,7 +113,10 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
       : "the GL renderer (" + (gl.empty() ? std::string("none found") : gl) +
         ") is a hardware one: the GI mapper shades on the GPU";
   }
-  o.Order = static_cast<int>(NumberOption(args, "--order", 4, ok));
+  // The CPU filter's default: order-6 shadows with an order-4 bounce, which
+  // costs about what order 4 did (AccuracyTime.md, section 21); the GPU
+  // modes run the bounce at the shading order, so they keep 4.
+  o.Order = static_cast<int>(NumberOption(args, "--order", o.Mode == "vertex" ? 6 : 4, ok));
   o.Spheres = static_cast<int>(NumberOption(args, "--spheres", 64, ok));
   o.ReferenceSpp = static_cast<int>(NumberOption(args, "--reference-spp", 1024, ok));
   o.MethodName = Option(args, "--method", "HYB");
@@ -127,6 +131,8 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   o.BrightShadows = Option(args, "--bright-shadows", "rays");
   o.BrightRays = static_cast<int>(NumberOption(args, "--bright-rays", 16, ok));
   o.PlaneDirections = static_cast<int>(NumberOption(args, "--plane-directions", 64, ok));
+  o.IndirectOrder =
+    static_cast<int>(NumberOption(args, "--indirect-order", o.Mode == "vertex" ? 4 : 0, ok));
   o.ProxyFit = Option(args, "--proxy-fit", "occlusion");
   o.PixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
   o.Exposure = NumberOption(args, "--exposure", 0.0, ok);
@@ -153,14 +159,15 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
     (o.BrightLights != "on" && o.BrightLights != "off") ||
     (o.BrightShadows != "rays" && o.BrightShadows != "proxies") ||
     (o.Background != "map" && o.Background != "none") || o.BrightRays < 1 || o.BrightRays > 256 ||
-    o.PlaneDirections < 0 || o.PlaneDirections > 1024 ||
-    (o.ProxyFit != "bounding" && o.ProxyFit != "occlusion"))
+    o.PlaneDirections < 0 || o.PlaneDirections > 1024 || o.IndirectOrder < 0 ||
+    o.IndirectOrder > 8 || (o.ProxyFit != "bounding" && o.ProxyFit != "occlusion"))
   {
     vtkLogF(ERROR,
       "proxygi render: --mode gpu|vertex|image-space, --scale 1|2|4|8, "
       "--pixel-reference-spp >= 1, 0 <= --self-visibility <= 65536, --bright-lights on|off, "
       "--bright-shadows rays|proxies, 1 <= --bright-rays <= 256, --background map|none, "
-      "0 <= --plane-directions <= 1024, --proxy-fit bounding|occlusion");
+      "0 <= --plane-directions <= 1024, 0 <= --indirect-order <= 8, "
+      "--proxy-fit bounding|occlusion");
     return false;
   }
   if (o.IndirectName != "shadowed" && o.IndirectName != "unshadowed" && o.IndirectName != "off")
@@ -202,6 +209,16 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   }
   if (o.ImageSpace())
   {
+    notFor("--indirect-order", "the image-space pass has the unshadowed bounce only");
+  }
+  else if (o.IndirectName != "shadowed" && Given(args, "--indirect-order"))
+  {
+    std::printf("note: --indirect-order does not apply to --indirect %s (it is the shadowed "
+                "bounce's order)\n",
+      o.IndirectName.c_str());
+  }
+  if (o.ImageSpace())
+  {
     notFor("--plane-directions", "the image-space pass samples the planes' light at one point");
     notFor("--reference-spp", "image-space is compared per pixel: --pixel-reference-spp");
     notFor("--vtp", "image-space has no per-vertex results");
@@ -235,6 +252,7 @@ vtkSmartPointer<vtkPGIGISettings> MakeSettings(
   settings->SetBrightLights(o.BrightLights == "on");
   settings->SetBrightLightRays(o.BrightRays);
   settings->SetPlaneBounceDirections(o.PlaneDirections);
+  settings->SetIndirectOrder(o.IndirectOrder);
   SetBackendPlaneDefaults(settings, o.Mode);
   return settings;
 }
@@ -681,13 +699,19 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     }
   }
   // What ran (the effective settings of this mode's backend).
-  std::printf("settings: mode %s, SH order %d, exp %s, indirect %s, %lld proxy spheres, %zu "
+  const bool shadowedBounce = effective->GetIndirect() &&
+    effective->GetIndirectMode() == vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
+  const std::string bounceOrder =
+    shadowedBounce && effective->GetEffectiveIndirectOrder() != effective->GetOrder()
+    ? " (SH order " + std::to_string(effective->GetEffectiveIndirectOrder()) + ")"
+    : std::string();
+  std::printf("settings: mode %s, SH order %d, exp %s, indirect %s%s, %lld proxy spheres, %zu "
               "planes, %lld receivers\n",
     o.Mode.c_str(), effective->GetOrder(),
     vtkPGIGISettings::ExpMethodName(effective->GetExpMethod()),
     !effective->GetIndirect() ? "off"
                               : vtkPGIGISettings::IndirectModeName(effective->GetIndirectMode()),
-    static_cast<long long>(proxies.Leaves), proxies.Planes.size(),
+    bounceOrder.c_str(), static_cast<long long>(proxies.Leaves), proxies.Planes.size(),
     static_cast<long long>(receivers));
   if (o.ImageSpace())
   {
@@ -716,15 +740,41 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
         progress.Interrupted() ? "; the reference was not cached" : "");
       return progress.Interrupted() ? InterruptedExitCode : 1;
     }
-    // The GPU reads back the total only.
+    // The indirect light: Radiance - DirectShadowed - LocalLights against
+    // Embree's IndirectOneBounce (on copies; the GPU reads back the total only).
+    std::vector<vtkSmartPointer<vtkPolyData>> bounce;
+    for (std::size_t k = 0; !gpu && k < shaded.size(); ++k)
+    {
+      auto copy = vtkSmartPointer<vtkPolyData>::New();
+      copy->ShallowCopy(shaded[k]);
+      vtkDataArray* radiance = copy->GetPointData()->GetArray("Radiance");
+      vtkDataArray* direct = copy->GetPointData()->GetArray("DirectShadowed");
+      vtkDataArray* local = copy->GetPointData()->GetArray("LocalLights");
+      vtkNew<vtkFloatArray> indirect;
+      indirect->SetName("IndirectOneBounce");
+      indirect->SetNumberOfComponents(3);
+      indirect->SetNumberOfTuples(copy->GetNumberOfPoints());
+      for (vtkIdType i = 0; radiance && direct && i < copy->GetNumberOfPoints(); ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          indirect->SetTypedComponent(i, c,
+            static_cast<float>(radiance->GetComponent(i, c) - direct->GetComponent(i, c) -
+              (local ? local->GetComponent(i, c) : 0.0)));
+        }
+      }
+      copy->GetPointData()->AddArray(indirect);
+      bounce.push_back(copy);
+    }
     for (std::size_t k = 0; k < shaded.size(); ++k)
     {
       std::printf(
         "object %zu (%s): relative RMSE against the reference: ", k, scene.Objects[k].Name.c_str());
       if (!gpu)
       {
-        std::printf("direct %.2f%%, ",
-          100 * RelativeRMSE(shaded, "DirectShadowed", reference, "DirectShadowed", { k }));
+        std::printf("direct %.2f%%, indirect %.2f%%, ",
+          100 * RelativeRMSE(shaded, "DirectShadowed", reference, "DirectShadowed", { k }),
+          100 * RelativeRMSE(bounce, "IndirectOneBounce", reference, "IndirectOneBounce", { k }));
       }
       std::printf(
         "total %.2f%%\n", 100 * RelativeRMSE(shaded, "Radiance", reference, "Radiance", { k }));
@@ -734,8 +784,9 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       referenceSpp, seconds, 100 * RelativeRMS(reference, "RadianceStdErr", "Radiance"));
     if (!gpu)
     {
-      std::printf("direct light %.2f%%, ",
-        100 * RelativeRMSE(shaded, "DirectShadowed", reference, "DirectShadowed"));
+      std::printf("direct light %.2f%%, indirect %.2f%%, ",
+        100 * RelativeRMSE(shaded, "DirectShadowed", reference, "DirectShadowed"),
+        100 * RelativeRMSE(bounce, "IndirectOneBounce", reference, "IndirectOneBounce"));
     }
     std::printf("total with one-bounce indirect %.2f%% (relative RMSE per vertex over all "
                 "objects)\n",
