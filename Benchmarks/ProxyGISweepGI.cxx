@@ -129,9 +129,10 @@ int main(int argc, char* argv[])
   }
   const auto receivers = SceneReceivers(loaded);
   // The same receivers with each mesh's own visibility traced (cached).
-  auto receiversTraced = receivers;
+  auto receiversTraced = receivers, receiversTraced6 = receivers;
   double selfSeconds = 0.0;
-  if (!AddSelfVisibility(scene, receiversTraced, 4, 256, cache, selfSeconds, error, &progress))
+  if (!AddSelfVisibility(scene, receiversTraced, 4, 256, cache, selfSeconds, error, &progress) ||
+    !AddSelfVisibility(scene, receiversTraced6, 6, 256, cache, selfSeconds, error, &progress))
   {
     std::fprintf(stderr, "%s\n", error.c_str());
     return progress.Interrupted() ? InterruptedExitCode : 1;
@@ -185,8 +186,9 @@ int main(int argc, char* argv[])
     int Mode = vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
     int Blocking = vtkPGIGISettings::BLOCKING_PER_SPHERE;
     bool SelfVisibility = false;
-    bool Fitted = false; // the spheres' radii fitted for occlusion
-    int Bright = 0;      // bright lights: 0 off (the map in SH), 1 proxies' cones, 2 rays
+    bool Fitted = false;   // the spheres' radii fitted for occlusion
+    int Bright = 0;        // bright lights: 0 off (the map in SH), 1 proxies' cones, 2 rays
+    int IndirectOrder = 0; // the shadowed bounce's order (0: Order)
   };
   std::vector<Config> configs;
   configs.push_back({ "baseline", "order 4, HYB, 64 spheres, averaged" });
@@ -280,8 +282,23 @@ int main(int argc, char* argv[])
     c.Hierarchy = 25.0;
     configs.push_back(c);
     c.Knob = "proxygi render";
-    c.Setting = "its default: fitted radii, traced self, bright rays, shadowed, hierarchy 25";
+    c.Setting = "its default before: order 4, fitted radii, traced self, bright rays, shadowed, "
+                "hierarchy 25";
     c.Fitted = true;
+    configs.push_back(c);
+    // The shadowed bounce's own order under order-6 shadows.
+    c.Knob = "indirect order";
+    c.Order = 6;
+    for (int k : { 6, 3 })
+    {
+      c.IndirectOrder = k;
+      c.Setting = "order 6, the bounce at " + std::to_string(k) + " (proxygi render otherwise)";
+      configs.push_back(c);
+    }
+    c.Knob = "proxygi render";
+    c.IndirectOrder = 4;
+    c.Setting = "its default: order 6, the bounce at 4, fitted radii, traced self, bright rays, "
+                "shadowed, hierarchy 25";
     configs.push_back(c);
   }
   // The meshes for the bright lights' rays (its Embree scene built here).
@@ -314,25 +331,31 @@ int main(int argc, char* argv[])
     {
       shaded.clear();
       const auto t0 = Clock::now();
-      for (auto& r : c.SelfVisibility ? receiversTraced : receivers)
+      // One filter shades every object, as proxygi render does (one bake).
+      vtkNew<vtkPGIGlobalIllumination> gi;
+      ConfigureGlobalIllumination(gi, scene, loaded, c.Fitted ? fitted : proxies.at(c.Spheres));
+      vtkPGIGISettings* settings = gi->GetSettings();
+      settings->SetOrder(c.Order);
+      settings->SetExpMethod(c.Method);
+      settings->SetHierarchyAngle(c.Hierarchy);
+      settings->SetIndirectOperator(c.Operator);
+      settings->SetShadows(c.Shadows);
+      settings->SetPlaneBlocking(c.Planes);
+      settings->SetPlaneBounceShadows(c.PlaneBounceShadows);
+      settings->SetPlaneBounceDirections(c.PlaneDirections);
+      settings->SetIndirectMode(c.Mode);
+      settings->SetSphericalLightBlocking(c.Blocking);
+      settings->SetBrightLights(c.Bright > 0);
+      settings->SetIndirectOrder(c.IndirectOrder);
+      gi->SetOccluder(c.Bright == 2 ? occluder.Get() : nullptr);
+      for (auto& r :
+        c.SelfVisibility ? (c.Order == 6 ? receiversTraced6 : receiversTraced) : receivers)
       {
-        vtkNew<vtkPGIGlobalIllumination> gi;
         gi->SetInputData(r);
-        ConfigureGlobalIllumination(gi, scene, loaded, c.Fitted ? fitted : proxies.at(c.Spheres));
-        gi->GetSettings()->SetOrder(c.Order);
-        gi->GetSettings()->SetExpMethod(c.Method);
-        gi->GetSettings()->SetHierarchyAngle(c.Hierarchy);
-        gi->GetSettings()->SetIndirectOperator(c.Operator);
-        gi->GetSettings()->SetShadows(c.Shadows);
-        gi->GetSettings()->SetPlaneBlocking(c.Planes);
-        gi->GetSettings()->SetPlaneBounceShadows(c.PlaneBounceShadows);
-        gi->GetSettings()->SetPlaneBounceDirections(c.PlaneDirections);
-        gi->GetSettings()->SetIndirectMode(c.Mode);
-        gi->GetSettings()->SetSphericalLightBlocking(c.Blocking);
-        gi->GetSettings()->SetBrightLights(c.Bright > 0);
-        gi->SetOccluder(c.Bright == 2 ? occluder.Get() : nullptr);
         gi->Update();
-        shaded.push_back(gi->GetOutput());
+        auto copy = vtkSmartPointer<vtkPolyData>::New();
+        copy->DeepCopy(gi->GetOutput());
+        shaded.push_back(copy);
       }
       best = std::min(best, Seconds(t0));
     }
@@ -437,9 +460,10 @@ int main(int argc, char* argv[])
       return progress.Interrupted() ? InterruptedExitCode : 1;
     }
     const auto rc = SceneReceivers(ld);
-    auto rcTraced = rc;
+    auto rcTraced = rc, rcTraced6 = rc;
     double selfTracing = 0.0;
-    if (!AddSelfVisibility(sd, rcTraced, 4, 256, cache, selfTracing, error, &progress))
+    if (!AddSelfVisibility(sd, rcTraced, 4, 256, cache, selfTracing, error, &progress) ||
+      !AddSelfVisibility(sd, rcTraced6, 6, 256, cache, selfTracing, error, &progress))
     {
       std::fprintf(stderr, "%s\n", error.c_str());
       return progress.Interrupted() ? InterruptedExitCode : 1;
@@ -478,10 +502,12 @@ int main(int argc, char* argv[])
     // the rays with the planes' light sampled at one point per receiver (the
     // GPU's way, and the filter's before the planes' light maps); then the
     // rays with the light maps and the radii fitted for occlusion (the CLI's
-    // default).
-    for (int variant = 0; variant < 8; ++variant)
+    // default before), and the same with order-6 shadows and an order-4
+    // bounce (its default now).
+    for (int variant = 0; variant < 9; ++variant)
     {
-      const bool fitted = variant == 7;
+      const bool fitted = variant >= 7;
+      const bool order6 = variant == 8;
       const int mode = variant % 2 || variant >= 4 ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
                                                    : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED;
       const bool traced = variant >= 2;
@@ -494,17 +520,22 @@ int main(int argc, char* argv[])
       {
         shaded.clear();
         const auto t0 = Clock::now();
-        for (auto& r : traced ? rcTraced : rc)
+        // One filter shades every object (one bake), as proxygi render does.
+        vtkNew<vtkPGIGlobalIllumination> gi;
+        ConfigureGlobalIllumination(gi, sd, ld, fitted ? spFitted : sp);
+        gi->GetSettings()->SetIndirectMode(mode);
+        gi->GetSettings()->SetBrightLights(bright > 0);
+        gi->GetSettings()->SetPlaneBounceDirections(onePoint ? 0 : 64);
+        gi->GetSettings()->SetOrder(order6 ? 6 : 4);
+        gi->GetSettings()->SetIndirectOrder(order6 ? 4 : 0);
+        gi->SetOccluder(bright == 2 ? meshes.Get() : nullptr);
+        for (auto& r : order6 ? rcTraced6 : (traced ? rcTraced : rc))
         {
-          vtkNew<vtkPGIGlobalIllumination> gi;
           gi->SetInputData(r);
-          ConfigureGlobalIllumination(gi, sd, ld, fitted ? spFitted : sp);
-          gi->GetSettings()->SetIndirectMode(mode);
-          gi->GetSettings()->SetBrightLights(bright > 0);
-          gi->GetSettings()->SetPlaneBounceDirections(onePoint ? 0 : 64);
-          gi->SetOccluder(bright == 2 ? meshes.Get() : nullptr);
           gi->Update();
-          shaded.push_back(gi->GetOutput());
+          auto copy = vtkSmartPointer<vtkPolyData>::New();
+          copy->DeepCopy(gi->GetOutput());
+          shaded.push_back(copy);
           count += repeat == 0 ? r->GetNumberOfPoints() : 0;
         }
         best = std::min(best, Seconds(t0));
@@ -514,7 +545,8 @@ int main(int argc, char* argv[])
       std::snprintf(line, sizeof(line),
         "| %s | %s | %lld | %.3f | %.1f | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% |\n",
         sd.Name.c_str(),
-        fitted          ? "shadowed, traced, bright rays, radii fitted for occlusion"
+        order6          ? "proxygi render: fitted radii, order-6 shadows, order-4 bounce"
+          : fitted      ? "shadowed, traced, bright rays, radii fitted for occlusion"
           : onePoint    ? "shadowed, traced, bright rays, planes' light at one point"
           : bright == 2 ? "shadowed, traced, bright lights (rays)"
           : bright == 1 ? "shadowed, traced, bright lights (proxies)"
