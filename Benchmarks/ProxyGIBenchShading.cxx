@@ -654,7 +654,7 @@ int main(int argc, char** argv)
     ->UseRealTime();
   for (const std::string& target : proxygi::sh::BatchTargets())
   {
-    for (int order = 3; order <= 6; ++order)
+    for (int order = 3; order <= 8; ++order)
     {
       for (int count : { 16, 64, 256 })
       {
@@ -669,7 +669,7 @@ int main(int argc, char** argv)
       }
     }
   }
-  for (int order = 3; order <= 6; ++order)
+  for (int order = 3; order <= 8; ++order)
   {
     for (int count : { 16, 64, 256 })
     {

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes pgiSHBasisPolynomials.inl: closed-form real SH polynomials for l <= 5.
+"""Writes pgiSHBasisPolynomials.inl: closed-form real SH polynomials for l <= 7.
 
 Convention (the project's one): real SH without the Condon-Shortley phase,
   y_l0  = K_l0 P_l(z)
@@ -16,7 +16,7 @@ Run from the repository root:
 from fractions import Fraction
 from math import factorial, pi, sqrt
 
-MAX_BAND = 5
+MAX_BAND = 7
 
 
 def legendre(l):

@@ -125,8 +125,9 @@ void EvaluateBasisPolynomial(int order, T x, T y, T z, T* out)
 template <typename T>
 void EvaluateBasis(int order, T x, T y, T z, T* out)
 {
-  if (order <= 6)
+  if (order <= MaxOrder)
   {
+    // The batched kernels evaluate the same polynomials (pgiSHBatch.cxx).
     EvaluateBasisPolynomial(order, x, y, z, out);
   }
   else

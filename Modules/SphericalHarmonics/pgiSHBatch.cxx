@@ -103,7 +103,7 @@ inline Lane operator*(Lane a, Lane b)
   return Lane(hn::Mul(a.v, b.v));
 }
 
-// EvaluateBasisPolynomial for one vector of directions (orders 1..6).
+// EvaluateBasisPolynomial for one vector of directions (orders 1..8).
 template <typename T>
 HWY_INLINE void BasisLanes(int order, T x, T y, T z, T* out)
 #include "pgiSHBasisPolynomials.inl"
@@ -220,8 +220,12 @@ void BatchAddCapsImpl(const CapTables& tables, int order, int count, const float
       return AddCapsOfOrder<4>(tables, count, theta, dirX, dirY, dirZ, ratios, f);
     case 5:
       return AddCapsOfOrder<5>(tables, count, theta, dirX, dirY, dirZ, ratios, f);
-    default:
+    case 6:
       return AddCapsOfOrder<6>(tables, count, theta, dirX, dirY, dirZ, ratios, f);
+    case 7:
+      return AddCapsOfOrder<7>(tables, count, theta, dirX, dirY, dirZ, ratios, f);
+    default:
+      return AddCapsOfOrder<8>(tables, count, theta, dirX, dirY, dirZ, ratios, f);
   }
 }
 
@@ -417,7 +421,8 @@ void BatchExp(int order, const float* f, float* g, const ExpOptions& options, St
 {
   constexpr int W = BatchWidth;
   const int n2 = NumCoefficients(order);
-  if (order < 1 || order > 6 || options.Method != ExpMethod::Hybrid || !BatchKernelsEnabled())
+  if (order < 1 || order > MaxOrder || options.Method != ExpMethod::Hybrid ||
+    !BatchKernelsEnabled())
   {
     // Lane by lane through the scalar exp.
     float fl[MaxCoefficients], gl[MaxCoefficients];

@@ -53,7 +53,7 @@ PROXYGISPHERICALHARMONICS_EXPORT void BatchSquare(int order, const float* f, flo
  * ratios) rotated to dir_b, for BatchWidth lanes. theta, dirX, dirY, dirZ
  * hold count rows of BatchWidth values; a lane whose theta is negative is
  * skipped for that blocker. ratios: count rows of `order` values, or null.
- * Orders up to 6.
+ * Orders up to 8.
  */
 PROXYGISPHERICALHARMONICS_EXPORT void BatchAddCaps(const CapTables& tables, int order, int count,
   const float* theta, const float* dirX, const float* dirY, const float* dirZ, const float* ratios,

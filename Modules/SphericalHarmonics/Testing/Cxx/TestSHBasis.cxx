@@ -50,10 +50,10 @@ int TestSHBasis(int, char*[])
     {
       c /= len;
     }
-    for (int order = 1; order <= 6; ++order)
+    for (int order = 1; order <= 8; ++order)
     {
-      double a[36], b[36];
-      float fa[36];
+      double a[64], b[64];
+      float fa[64];
       EvaluateBasisPolynomial(order, d[0], d[1], d[2], a);
       EvaluateBasisRecurrence(order, d[0], d[1], d[2], b);
       EvaluateBasis(order, float(d[0]), float(d[1]), float(d[2]), fa);

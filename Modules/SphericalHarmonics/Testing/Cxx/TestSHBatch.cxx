@@ -83,7 +83,7 @@ int TestSHBatch(int, char*[])
     PGI_CHECK(SetBatchTarget(target));
     PGI_CHECK(target == BatchTargetName());
     double worstSquare = 0.0, worstCaps = 0.0, worstExp[4] = { 0, 0, 0, 0 };
-    for (int order = 1; order <= 6; ++order)
+    for (int order = 1; order <= MaxOrder; ++order)
     {
       const int n2 = NumCoefficients(order);
       const TripleProduct& tp = TripleProduct::Get(order);
