@@ -329,7 +329,6 @@ int main(int argc, char* argv[])
     std::vector<vtkSmartPointer<vtkPolyData>> shaded;
     for (int repeat = 0; repeat < repeats; ++repeat)
     {
-      shaded.clear();
       const auto t0 = Clock::now();
       // One filter shades every object, as proxygi render does (one bake).
       vtkNew<vtkPGIGlobalIllumination> gi;
@@ -348,15 +347,8 @@ int main(int argc, char* argv[])
       settings->SetBrightLights(c.Bright > 0);
       settings->SetIndirectOrder(c.IndirectOrder);
       gi->SetOccluder(c.Bright == 2 ? occluder.Get() : nullptr);
-      for (auto& r :
-        c.SelfVisibility ? (c.Order == 6 ? receiversTraced6 : receiversTraced) : receivers)
-      {
-        gi->SetInputData(r);
-        gi->Update();
-        auto copy = vtkSmartPointer<vtkPolyData>::New();
-        copy->DeepCopy(gi->GetOutput());
-        shaded.push_back(copy);
-      }
+      shaded = ShadeEach(
+        gi, c.SelfVisibility ? (c.Order == 6 ? receiversTraced6 : receiversTraced) : receivers);
       best = std::min(best, Seconds(t0));
     }
     AddIndirectSum(shaded);
@@ -518,7 +510,6 @@ int main(int argc, char* argv[])
       double best = 1e300;
       for (int repeat = 0; repeat < repeats; ++repeat)
       {
-        shaded.clear();
         const auto t0 = Clock::now();
         // One filter shades every object (one bake), as proxygi render does.
         vtkNew<vtkPGIGlobalIllumination> gi;
@@ -529,16 +520,12 @@ int main(int argc, char* argv[])
         gi->GetSettings()->SetOrder(order6 ? 6 : 4);
         gi->GetSettings()->SetIndirectOrder(order6 ? 4 : 0);
         gi->SetOccluder(bright == 2 ? meshes.Get() : nullptr);
-        for (auto& r : order6 ? rcTraced6 : (traced ? rcTraced : rc))
-        {
-          gi->SetInputData(r);
-          gi->Update();
-          auto copy = vtkSmartPointer<vtkPolyData>::New();
-          copy->DeepCopy(gi->GetOutput());
-          shaded.push_back(copy);
-          count += repeat == 0 ? r->GetNumberOfPoints() : 0;
-        }
+        shaded = ShadeEach(gi, order6 ? rcTraced6 : (traced ? rcTraced : rc));
         best = std::min(best, Seconds(t0));
+      }
+      for (const auto& r : shaded)
+      {
+        count += r->GetNumberOfPoints();
       }
       AddIndirectSum(shaded);
       char line[1024];

@@ -24,6 +24,7 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkLogger.h>
@@ -37,6 +38,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSkybox.h>
+#include <vtkStringArray.h>
 #include <vtkTexture.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
@@ -282,26 +284,19 @@ std::vector<vtkSmartPointer<vtkPolyData>> ShadeOnCPU(
 {
   // One filter for every object: its bake (the light in SH, its tables, the
   // spherical lights' first pass) is built once; each new receiver mesh only
-  // costs its own shading. The output is copied, as the next update reuses it.
-  std::vector<vtkSmartPointer<vtkPolyData>> shaded;
+  // costs its own shading.
   vtkNew<vtkPGIGlobalIllumination> gi;
   ConfigureGlobalIllumination(gi, scene, loaded, proxies);
   gi->SetSettings(settings);
   gi->SetOccluder(occluder);
-  for (auto& object : receivers)
+  std::vector<vtkSmartPointer<vtkPolyData>> shaded = ShadeEach(gi, receivers);
+  // The first object's plan.
+  auto* plan = shaded.empty()
+    ? nullptr
+    : vtkStringArray::SafeDownCast(shaded.front()->GetFieldData()->GetAbstractArray("Plan"));
+  for (vtkIdType i = 0; plan && i < plan->GetNumberOfValues(); ++i)
   {
-    gi->SetInputData(object);
-    gi->Update();
-    auto copy = vtkSmartPointer<vtkPolyData>::New();
-    copy->DeepCopy(gi->GetOutput());
-    shaded.push_back(copy);
-    if (shaded.size() == 1)
-    {
-      for (const std::string& line : gi->GetPlan())
-      {
-        std::printf("plan: %s\n", line.c_str());
-      }
-    }
+    std::printf("plan: %s\n", plan->GetValue(i).c_str());
   }
   return shaded;
 }

@@ -367,6 +367,21 @@ void ConfigureGlobalIllumination(vtkPGIGlobalIllumination* gi, const SceneDescri
   ConfigureSettings(gi->GetSettings(), scene);
 }
 
+std::vector<vtkSmartPointer<vtkPolyData>> ShadeEach(
+  vtkPGIGlobalIllumination* gi, const std::vector<vtkSmartPointer<vtkPolyData>>& receivers)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> shaded;
+  for (const auto& receiver : receivers)
+  {
+    gi->SetInputData(receiver);
+    gi->Update();
+    auto copy = vtkSmartPointer<vtkPolyData>::New();
+    copy->DeepCopy(gi->GetOutput());
+    shaded.push_back(copy);
+  }
+  return shaded;
+}
+
 void ConfigureSettings(vtkPGIGISettings* settings, const SceneDescription& scene)
 {
   settings->SetShadows(scene.Shadows);

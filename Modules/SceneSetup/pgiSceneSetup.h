@@ -117,6 +117,12 @@ PROXYGISCENESETUP_EXPORT void ConfigureSettings(
 PROXYGISCENESETUP_EXPORT void ConfigureGlobalIllumination(vtkPGIGlobalIllumination* gi,
   const SceneDescription& scene, const LoadedScene& loaded, const SceneProxies& proxies);
 
+/// Shades each receiver in turn with the one filter `gi`, so its bake is
+/// built once for the scene, and returns copies of its outputs (each with
+/// its Plan field array): the filter reuses its output's arrays.
+PROXYGISCENESETUP_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> ShadeEach(
+  vtkPGIGlobalIllumination* gi, const std::vector<vtkSmartPointer<vtkPolyData>>& receivers);
+
 /**
  * Embree reference of every receiver (object k is the receiver, the others
  * block and reflect), `spp` samples, one bounce; with `proxies` the meshes

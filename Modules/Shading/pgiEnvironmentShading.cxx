@@ -26,28 +26,23 @@ EnvironmentShading::EnvironmentShading(
   {
     std::copy(channels[c], channels[c] + n2, this->Light.begin() + c * n2);
   }
+  // M_L per channel (M_L g = L * g): the ProductMatrix path keeps it; the
+  // table path takes L * H(N) = M_L H(N) per node, a dense matrix-vector
+  // product (a sparse triple product per node took 3.5x as long at order 4
+  // and 9x at order 6: ShadingTable benchmark).
   const sh::TripleProduct& tp = sh::TripleProduct::Get(order);
-  if (path == Path::ProductMatrix)
-  {
-    this->Matrix.resize(3 * n2 * n2);
-    for (int c = 0; c < 3; ++c)
-    {
-      std::vector<double> m(n2 * n2);
-      tp.ProductMatrix(channels[c], m.data());
-      std::copy(m.begin(), m.end(), this->Matrix.begin() + c * n2 * n2);
-    }
-    return;
-  }
-  // Grid nodes at the cell corners, poles included, so interpolation reaches them.
-  this->LHTable.resize(static_cast<std::size_t>(this->Height + 1) * (this->Width + 1) * 3 * n2);
-  // L * H(N) = M_L H(N): one product matrix per channel, then a dense
-  // matrix-vector product per node; a sparse triple product per node took
-  // 3.5x as long at order 4 and 9x at order 6 (ShadingTable benchmark).
   std::vector<double> light(3 * static_cast<std::size_t>(n2) * n2);
   for (int c = 0; c < 3; ++c)
   {
     tp.ProductMatrix(channels[c], &light[static_cast<std::size_t>(c) * n2 * n2]);
   }
+  if (path == Path::ProductMatrix)
+  {
+    this->Matrix.assign(light.begin(), light.end());
+    return;
+  }
+  // Grid nodes at the cell corners, poles included, so interpolation reaches them.
+  this->LHTable.resize(static_cast<std::size_t>(this->Height + 1) * (this->Width + 1) * 3 * n2);
   // Rows are independent: one thread each (a first update waits on this).
   vtkSMPTools::For(0, this->Height + 1,
     [&](int first, int last)

@@ -233,7 +233,7 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
 {
   const int order = this->Settings.Order, acc = this->AccOrder;
   const int n2 = sh::NumCoefficients(order), a2 = sh::NumCoefficients(acc);
-  if (!sh::BatchKernelsEnabled() || acc > sh::MaxOrder)
+  if (!sh::BatchKernelsEnabled())
   {
     for (int i = 0; i < count; ++i)
     {

@@ -32,9 +32,9 @@
  * | IndirectMode | UNSHADOWED | UNSHADOWED (Sloan 2007) or SHADOWED (Guerrero 2008) |
  * | IndirectOperator | AVERAGED | POINT_SAMPLED, AVERAGED (D(theta)), EXACT (M(theta)) |
  * | SphericalLightBlocking | PER_SPHERE | SHADOWED: lights block per sphere or per object |
- * | IndirectOrder | 0 (= Order) | SH order of the shadowed bounce (its lights and their exps), at
- * most Order; CPU filter | | PlaneBounceShadows | on | planes reflect less where the proxies shadow
- * them | | PlaneBounceDirections | 64 | planes' light averaged per receiver (pgiPlaneLightMap.h) |
+ * | IndirectOrder | 0 (= Order) | the shadowed bounce's SH order, at most Order; CPU filter |
+ * | PlaneBounceShadows | on | planes reflect less where the proxies shadow them |
+ * | PlaneBounceDirections | 64 | planes' light averaged per receiver (pgiPlaneLightMap.h) |
  * | PlaneBlocking | PLANES_IN_LIGHT | planes as steps in the light, or caps in log space |
  * | LocalLights | on | the lighting's spherical and point lights |
  * | LightCloud | on | point lights' indirect light from a light cloud (SetLocalLightTransfer) |
