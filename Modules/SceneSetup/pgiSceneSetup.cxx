@@ -646,4 +646,36 @@ double RelativeRMS(const std::vector<vtkSmartPointer<vtkPolyData>>& a, const cha
   return ref > 0.0 ? std::sqrt(sq / ref) : 0.0;
 }
 
+double EstimatedRelativeRMSE(const std::vector<vtkSmartPointer<vtkPolyData>>& a,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& cheap, int cheapSpp, int targetSpp)
+{
+  // E|a - b|^2 = |a - t|^2 + s^2 and E|b|^2 = |t|^2 + s^2 per component (s
+  // the cheap run's standard error); a reference of targetSpp samples keeps
+  // s^2 cheapSpp / targetSpp of that noise.
+  const double removed = 1.0 - std::min(1.0, static_cast<double>(cheapSpp) / targetSpp);
+  double sq = 0.0, ref = 0.0, noise = 0.0;
+  for (std::size_t k = 0; k < a.size() && k < cheap.size(); ++k)
+  {
+    vtkDataArray* x = a[k]->GetPointData()->GetArray("Radiance");
+    vtkDataArray* y = cheap[k]->GetPointData()->GetArray("Radiance");
+    vtkDataArray* s = cheap[k]->GetPointData()->GetArray("RadianceStdErr");
+    if (!x || !y || !s || x->GetNumberOfTuples() != y->GetNumberOfTuples())
+    {
+      return std::nan("");
+    }
+    for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const double d = x->GetComponent(i, c) - y->GetComponent(i, c);
+        sq += d * d;
+        ref += y->GetComponent(i, c) * y->GetComponent(i, c);
+        noise += s->GetComponent(i, c) * s->GetComponent(i, c);
+      }
+    }
+  }
+  const double signal = ref - removed * noise;
+  return signal > 0.0 ? std::sqrt(std::max(0.0, sq - removed * noise) / signal) : 0.0;
+}
+
 } // namespace proxygi

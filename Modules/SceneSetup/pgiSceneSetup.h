@@ -151,6 +151,18 @@ PROXYGISCENESETUP_EXPORT double RelativeRMSE(const std::vector<vtkSmartPointer<v
 PROXYGISCENESETUP_EXPORT double RelativeRMS(const std::vector<vtkSmartPointer<vtkPolyData>>& a,
   const char* arrayA, const char* arrayValue, const std::vector<std::size_t>& objects = {});
 
+/**
+ * The relative RMSE of `a`'s "Radiance" against a reference of `targetSpp`
+ * samples, estimated from a cheap one of `cheapSpp` samples ("Radiance",
+ * "RadianceStdErr"): the cheap run's extra noise taken out of both sums.
+ * Over tens of thousands of receivers the noise's sum is known to a few
+ * percent, so 16 samples estimate a 1024-sample comparison (the budget's
+ * check; AccuracyTime.md section 22 measures how well).
+ */
+PROXYGISCENESETUP_EXPORT double EstimatedRelativeRMSE(
+  const std::vector<vtkSmartPointer<vtkPolyData>>& a,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& cheap, int cheapSpp, int targetSpp);
+
 } // namespace proxygi
 
 #endif

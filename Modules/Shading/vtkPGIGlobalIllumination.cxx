@@ -1,6 +1,8 @@
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILocalLightTransfer.h"
 
+#include "pgiAccuracyBudget.h"
+
 #include "pgiBrightLightShadows.h"
 #include "pgiEnvironmentMap.h"
 #include "pgiEnvironmentShading.h"
@@ -47,6 +49,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
 vtkStandardNewMacro(vtkPGIGlobalIllumination);
@@ -429,8 +432,17 @@ struct vtkPGIGlobalIllumination::Clusters
   ClusterKey Key;
 };
 
+// The budget model, read once per file name.
+struct vtkPGIGlobalIllumination::BudgetState
+{
+  std::string FileName;
+  proxygi::budget::Model Model;
+  bool Loaded = false;
+};
+
 vtkPGIGlobalIllumination::vtkPGIGlobalIllumination()
   : Scratch(new ShadeBuffers)
+  , Budget(new BudgetState)
 {
   this->SetNumberOfInputPorts(2);
   this->Settings = vtkPGIGISettings::New();
@@ -444,6 +456,7 @@ vtkPGIGlobalIllumination::~vtkPGIGlobalIllumination()
   this->SetOccluder(nullptr);
   this->SetLocalLightTransfer(nullptr);
   this->SetController(nullptr);
+  this->SetBudgetModelFileName(nullptr);
   this->Settings->UnRegister(this);
 }
 
@@ -583,6 +596,10 @@ void vtkPGIGlobalIllumination::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlockerPlanes: " << this->Bake->GetNumberOfBlockerPlanes() << "\n";
   os << indent << "Bake builds: " << this->Bake->GetNumberOfBuilds() << "\n";
   os << indent << "ColorExposure: " << this->ColorExposure << "\n";
+  os << indent << "ErrorBudget: " << this->ErrorBudget << "\n";
+  os << indent << "TimeBudget: " << this->TimeBudget << "\n";
+  os << indent << "BudgetModelFileName: "
+     << (this->BudgetModelFileName ? this->BudgetModelFileName : "(the model that ships)") << "\n";
   os << indent << "Controller: " << this->Controller << " ("
      << proxygi::parallel::Ranks(this->Controller) << " ranks)\n";
 }
@@ -615,11 +632,125 @@ std::string vtkPGIGlobalIllumination::CheckReceivers(vtkPolyData* receivers)
   return std::string();
 }
 
-std::string vtkPGIGlobalIllumination::PrepareBake(vtkPolyData* proxies)
+std::string vtkPGIGlobalIllumination::ApplyBudget(vtkPolyData* proxies, vtkPolyData* receivers)
+{
+  namespace budget = proxygi::budget;
+  std::vector<std::string> lines;
+  const std::string name = this->BudgetModelFileName ? this->BudgetModelFileName : "";
+  BudgetState& state = *this->Budget;
+  if (!state.Loaded || state.FileName != name)
+  {
+    std::string error;
+    state.Model = budget::Model::Default();
+    if (!name.empty() && !state.Model.Load(name, error))
+    {
+      state.Loaded = false;
+      return "Budget model: " + error + ".";
+    }
+    state.FileName = name;
+    state.Loaded = true;
+  }
+  budget::SceneFeatures features;
+  // The frame is every rank's receivers: all ranks choose alike.
+  features.Receivers = proxygi::parallel::Sum(proxygi::parallel::Active(this->Controller),
+    receivers ? static_cast<double>(receivers->GetNumberOfPoints()) : 0.0);
+  // Spheres per object from the leaves (Level 0, or all without levels).
+  vtkDataArray* level = proxies ? proxies->GetPointData()->GetArray("Level") : nullptr;
+  vtkDataArray* object = proxies ? proxies->GetPointData()->GetArray("ObjectId") : nullptr;
+  std::set<long long> objects;
+  double leaves = 0.0;
+  for (vtkIdType i = 0; proxies && i < proxies->GetNumberOfPoints(); ++i)
+  {
+    if (!level || level->GetComponent(i, 0) == 0.0)
+    {
+      leaves += 1.0;
+      objects.insert(object ? static_cast<long long>(object->GetComponent(i, 0)) : 0);
+    }
+  }
+  features.Objects = std::max<double>(1.0, static_cast<double>(objects.size()));
+  features.Spheres = leaves;
+  std::string error;
+  if (!features.SetLight(this->Lighting, error))
+  {
+    return "Budget: " + error + ".";
+  }
+  const double perObject = leaves / features.Objects;
+  const bool traced = this->Effective->GetSelfVisibility() && receivers &&
+    receivers->GetPointData()->GetArray("SelfLogVisibility");
+  // The candidates' sphere count nearest to the proxies' (in ratio).
+  double nearest = 0.0;
+  for (const auto& c : state.Model.Candidates)
+  {
+    const double d = std::fabs(std::log(c.Settings.Spheres / std::max(1.0, perObject)));
+    if (nearest == 0.0 || d < std::fabs(std::log(nearest / std::max(1.0, perObject))))
+    {
+      nearest = c.Settings.Spheres;
+    }
+  }
+  budget::Budget b;
+  if (this->ErrorBudget != 0.0)
+  {
+    b.SetError(this->ErrorBudget);
+  }
+  if (this->TimeBudget != 0.0)
+  {
+    b.SetSeconds(this->TimeBudget);
+  }
+  // The candidates of these inputs; a model without them (a calibration
+  // of other settings) is used as it is, and the plan says so.
+  budget::Choice choice = budget::Choose(state.Model, features, b,
+    [&](const budget::Knobs& k)
+    { return k.Spheres == nearest && (k.SelfVisibility > 0) == traced; });
+  const bool matched = choice.Candidate >= 0;
+  if (!matched)
+  {
+    choice = budget::Choose(state.Model, features, b);
+  }
+  if (choice.Candidate < 0)
+  {
+    return "Budget: " + choice.Reason + ".";
+  }
+  if (!choice.Valid)
+  {
+    vtkWarningMacro(<< "Budget: " << choice.Reason << ".");
+  }
+  const int order = std::min(choice.Settings.Order, GetSupport().MaxOrder);
+  this->Effective->SetOrder(order);
+  this->Effective->SetIndirectOrder(choice.Settings.IndirectOrder);
+  if (this->Effective->GetIndirect())
+  {
+    this->Effective->SetIndirectMode(choice.Settings.ShadowedIndirect
+        ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+        : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+  }
+  this->Effective->SetHierarchyAngle(choice.Settings.HierarchyAngle);
+  std::ostringstream line;
+  line.precision(3);
+  line << "budget: " << choice.Settings.Describe() << " (the proxies' " << perObject
+       << " spheres per object as " << nearest << ", self-visibility "
+       << (traced ? "given" : "by the rules")
+       << (matched ? "" : "; the model has no candidate for these inputs: its nearest")
+       << "); predicted error " << 100.0 * choice.PredictedError << "%, "
+       << 1e3 * choice.PredictedSeconds << " ms on " << state.Model.Machine << "; "
+       << (choice.Met ? "" : "NOT MET: ") << choice.Reason;
+  this->BudgetPlan = line.str();
+  return std::string();
+}
+
+std::string vtkPGIGlobalIllumination::PrepareBake(vtkPolyData* proxies, vtkPolyData* receivers)
 {
   std::vector<std::string> notes;
   this->Settings->Resolve(
     GetSupport(), this->Bake->GetNumberOfBlockerPlanes(), this->Effective, notes);
+  this->BudgetPlan.clear();
+  if (this->ErrorBudget != 0.0 || this->TimeBudget != 0.0)
+  {
+    std::string error = this->ApplyBudget(proxies, receivers);
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
   this->Bake->SetProxies(proxies);
   this->Bake->SetLighting(this->Lighting);
   if (!this->Bake->Update())
@@ -634,6 +765,10 @@ std::string vtkPGIGlobalIllumination::PrepareBake(vtkPolyData* proxies)
     return this->Bake->GetError();
   }
   this->Plan = this->Bake->GetScene().Plan;
+  if (!this->BudgetPlan.empty())
+  {
+    this->Plan.insert(this->Plan.begin(), this->BudgetPlan);
+  }
   if (this->Effective->GetHierarchyAngle() > 0.0 && !this->Bake->GetScene().UseHierarchy)
   {
     this->Plan.push_back("hierarchy: not used (the proxies have no Level/Parent arrays)");
@@ -1578,7 +1713,7 @@ int vtkPGIGlobalIllumination::RequestData(
     }
   }
   Clock::time_point stage = Clock::now();
-  error = this->PrepareBake(globalProxies);
+  error = this->PrepareBake(globalProxies, receivers);
   if (error.empty() && this->Occluder && this->Bake->GetScene().RunBrightLights &&
     this->Effective->GetShadows() && !this->Occluder->Prepare(error))
   {

@@ -178,6 +178,26 @@ public:
   vtkSetClampMacro(ColorExposure, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(ColorExposure, double);
 
+  /**
+   * Accuracy budget: with ErrorBudget > 0 (relative RMSE against the truth,
+   * 0.05 for 5%) each update runs the fastest order, bounce order, bounce
+   * model and hierarchy angle the budget model predicts to stay within it;
+   * with TimeBudget > 0 (seconds per update) the most accurate predicted to
+   * fit in it; with both, the fastest meeting both. The proxies and the
+   * receivers' self-visibility are inputs, so only the candidates of their
+   * sphere count and self-visibility are considered. The Plan says what was
+   * chosen, the prediction and what was traded away; a budget that cannot
+   * be met runs the closest candidate and says so. 0: no budget (default);
+   * negative: a warning and the closest candidate.
+   */
+  vtkSetMacro(ErrorBudget, double);
+  vtkGetMacro(ErrorBudget, double);
+  vtkSetMacro(TimeBudget, double);
+  vtkGetMacro(TimeBudget, double);
+  /// The model from `proxygi calibrate` (null or empty: the one that ships).
+  vtkSetStringMacro(BudgetModelFileName);
+  vtkGetStringMacro(BudgetModelFileName);
+
   /// The ranks the receivers are spread over (null: this process alone).
   virtual void SetController(vtkMultiProcessController* controller);
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
@@ -200,7 +220,9 @@ protected:
   // The stages of RequestData.
   // An empty string when fine, else the reason.
   std::string CheckReceivers(vtkPolyData* receivers);
-  std::string PrepareBake(vtkPolyData* proxies);
+  std::string PrepareBake(vtkPolyData* proxies, vtkPolyData* receivers);
+  // The budget's knobs on Effective (after Resolve), with their plan lines.
+  std::string ApplyBudget(vtkPolyData* proxies, vtkPolyData* receivers);
   bool ClusterReceivers(vtkPolyData* receivers, vtkDataArray* normals);
   void ShadeReceivers(vtkPolyData* receivers, vtkDataArray* normals, vtkPolyData* output);
 
@@ -216,6 +238,11 @@ protected:
   std::unique_ptr<ShadeBuffers> Scratch;
   std::vector<std::string> Plan;
   double ColorExposure = 1.0;
+  double ErrorBudget = 0.0, TimeBudget = 0.0;
+  char* BudgetModelFileName = nullptr;
+  struct BudgetState;
+  std::unique_ptr<BudgetState> Budget;
+  std::string BudgetPlan;
   vtkMultiProcessController* Controller = nullptr;
   double CommunicationTime = 0.0, CommunicationBytes = 0.0;
   // Per-stage milliseconds of the last update (normals, precompute, clusters,

@@ -153,6 +153,14 @@ plan2 = servermanager.Fetch(gi).GetFieldData().GetAbstractArray("Plan")
 check(any("the bounce at SH order 2 (shadows at 3)" in plan2.GetValue(i)
           for i in range(plan2.GetNumberOfValues())),
       "IndirectOrder 2 reaches the filter (the bounce at SH order 2)")
+# The accuracy budget chooses the knobs and the plan says so.
+gi.ErrorBudget = 0.5
+gi.UpdatePipeline()
+planb = servermanager.Fetch(gi).GetFieldData().GetAbstractArray("Plan")
+check(any(planb.GetValue(i).startswith("budget: order ") and "predicted error" in planb.GetValue(i)
+          for i in range(planb.GetNumberOfValues())),
+      "ErrorBudget reaches the filter (the plan's budget line)")
+gi.ErrorBudget = 0.0
 gi.IndirectMode = "Unshadowed"
 gi.IndirectOrder = 0
 gi.EnvironmentFileName = image

@@ -1,0 +1,294 @@
+// The accuracy budget (pgiAccuracyBudget.h): the model's fit recovers known
+// cost and error laws exactly, survives a write and read, and the choice
+// takes the fastest candidate within an error budget, the most accurate
+// within a time budget, the closest one for a budget nothing meets or a bad
+// one (zero, negative, NaN) and says so; the model that ships reads and
+// predicts; the filter applies a budget to its effective settings and says
+// what it chose in the plan.
+#include "pgiAccuracyBudget.h"
+#include "vtkPGIGISettings.h"
+#include "vtkPGIGlobalIllumination.h"
+#include "vtkPGILighting.h"
+
+#include "pgiHardScenes.h"
+#include "pgiTesting.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+namespace
+{
+using namespace proxygi::budget;
+
+int Warnings = 0;
+void CountWarning(vtkObject*, unsigned long, void*, void*)
+{
+  ++Warnings;
+}
+
+bool Check(bool ok, const char* what)
+{
+  if (!ok)
+  {
+    std::fprintf(stderr, "FAILED: %s\n", what);
+  }
+  return ok;
+}
+
+bool Near(double a, double b, double relative)
+{
+  return std::fabs(a - b) <= relative * std::max(std::fabs(a), std::fabs(b));
+}
+
+// Three candidates on six scenes that follow the model's laws exactly.
+std::vector<Measurement> SyntheticRows()
+{
+  Knobs fast, middle, accurate;
+  fast.Order = 3;
+  fast.Spheres = 16;
+  middle.Order = 4;
+  accurate.Order = 8;
+  const Knobs knobs[3] = { fast, middle, accurate };
+  // a + m M + b R + c R P + d R L (pgiAccuracyBudget.h).
+  const double time[3][5] = { { 0.01, 0.005, 0.02, 0.0, 0.01 }, { 0.02, 0.01, 0.03, 0.001, 0.01 },
+    { 0.1, 0.02, 0.05, 0.004, 0.02 } };
+  const double intercept[3] = { std::log(0.15), std::log(0.08), std::log(0.04) };
+  const double weights[3] = { 0.8, 0.3, 0.2 };
+  std::vector<Measurement> rows;
+  for (int s = 0; s < 6; ++s)
+  {
+    SceneFeatures f;
+    f.Receivers = 5000.0 + 9000.0 * s;
+    f.Objects = 1 + s % 3;
+    f.PeakFraction = 0.1 * s;
+    f.Directionality = 0.05 + 0.13 * ((s * 7) % 5);
+    f.Map = s == 0 ? 0.0 : 1.0;
+    f.BrightLights = s % 2;
+    for (int k = 0; k < 3; ++k)
+    {
+      Measurement m;
+      m.Scene = "scene " + std::to_string(s);
+      m.Features = f;
+      m.Settings = knobs[k];
+      const double r = f.Receivers / 1e4, p = knobs[k].Spheres * f.Objects / 1e2;
+      m.Seconds = time[k][0] + time[k][1] * f.Map + time[k][2] * r + time[k][3] * r * p +
+        time[k][4] * r * f.BrightLights;
+      const auto x = ErrorFeatures(f);
+      m.Error = std::exp(intercept[k] + weights[0] * x[0] + weights[1] * x[1] + weights[2] * x[2]);
+      rows.push_back(m);
+    }
+  }
+  return rows;
+}
+} // namespace
+
+int TestAccuracyBudget(int, char*[])
+{
+  bool ok = true;
+  const std::vector<Measurement> rows = SyntheticRows();
+
+  // The fit reproduces every measurement (the ridge on the shared weights
+  // is 1e-3: within 1% of the error, 1e-9 of the time).
+  Model model;
+  std::string error;
+  ok &= Check(model.Fit(rows, error), "fit");
+  ok &= Check(model.Candidates.size() == 3, "three candidates");
+  double worstTime = 0.0, worstError = 0.0;
+  for (const Measurement& m : rows)
+  {
+    std::size_t k = 0;
+    while (!(model.Candidates[k].Settings == m.Settings))
+    {
+      ++k;
+    }
+    worstTime = std::max(worstTime, std::fabs(model.PredictSeconds(k, m.Features) / m.Seconds - 1));
+    worstError = std::max(worstError, std::fabs(model.PredictError(k, m.Features) / m.Error - 1));
+  }
+  std::printf("synthetic fit: worst time %.2e, worst error %.2e (relative), spread %.2e\n",
+    worstTime, worstError, model.ErrorSpread);
+  ok &= Check(worstTime < 1e-9 && worstError < 1e-2 && model.ErrorSpread < 1e-2, "exact fit");
+
+  // A candidate measured on one scene only is left out.
+  std::vector<Measurement> extra = rows;
+  Measurement lone = rows[0];
+  lone.Settings.Order = 5;
+  extra.push_back(lone);
+  Model withLone;
+  ok &= Check(withLone.Fit(extra, error) && withLone.Candidates.size() == 3, "one scene: left out");
+  ok &= Check(!Model().Fit({ lone }, error) && !error.empty(), "nothing to fit: an error");
+
+  // Written and read back: the same predictions; bad text is refused.
+  Model read;
+  ok &= Check(read.Read(model.Write(), error), "read back");
+  SceneFeatures probe;
+  probe.Receivers = 42000;
+  probe.Objects = 2;
+  probe.PeakFraction = 0.3;
+  probe.Directionality = 0.4;
+  for (std::size_t k = 0; k < 3; ++k)
+  {
+    ok &= Check(Near(read.PredictSeconds(k, probe), model.PredictSeconds(k, probe), 1e-7) &&
+        Near(read.PredictError(k, probe), model.PredictError(k, probe), 1e-7),
+      "read back: same predictions");
+  }
+  ok &= Check(!Model().Read("version 1\n", error), "wrong version refused");
+  ok &= Check(!Model().Read("version 2\ncandidate 6 4 64 256 1 25 -1 0 0 0 0 0 0\n", error),
+    "negative time refused");
+  ok &= Check(!Model().Read("version 2\nnonsense\n", error), "unknown line refused");
+
+  // Measurements survive CSV.
+  std::vector<Measurement> back;
+  ok &=
+    Check(ReadMeasurements(WriteMeasurements(rows), back, error) && back.size() == rows.size() &&
+        Near(back[4].Seconds, rows[4].Seconds, 1e-8) && back[4].Settings == rows[4].Settings,
+      "measurements CSV");
+
+  // A check's scale multiplies every error prediction, and nothing else.
+  SceneFeatures scaled = probe;
+  scaled.ErrorScale = 1.5;
+  ok &= Check(Near(model.PredictError(1, scaled), 1.5 * model.PredictError(1, probe), 1e-12) &&
+      Near(model.PredictSeconds(1, scaled), model.PredictSeconds(1, probe), 1e-12),
+    "ErrorScale");
+
+  // The choice. Predictions on the probe:
+  double e[3], t[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    e[k] = model.PredictError(k, probe);
+    t[k] = model.PredictSeconds(k, probe);
+    std::printf("candidate %d: %s, predicted %.2f%% in %.1f ms\n", k,
+      model.Candidates[k].Settings.Describe().c_str(), 100 * e[k], 1e3 * t[k]);
+  }
+  ok &= Check(e[0] > e[1] && e[1] > e[2] && t[0] < t[1] && t[1] < t[2], "a ladder");
+  Budget b;
+  b.SetError(0.5 * (e[1] + e[2])); // only the accurate one, the slowest
+  Choice c = Choose(model, probe, b);
+  ok &= Check(c.Candidate == 2 && c.Met && c.Valid, "error budget: the only one within");
+  b.SetError(1.01 * e[1]); // middle and accurate meet it: the faster
+  c = Choose(model, probe, b);
+  ok &= Check(c.Candidate == 1 && c.Met, "error budget: the fastest within");
+  std::printf("%s\n", c.Reason.c_str());
+  ok &= Check(c.Reason.find("traded away") != std::string::npos, "says what it traded");
+  b.SetError(0.5 * e[2]); // nothing meets it: the most accurate
+  c = Choose(model, probe, b);
+  ok &= Check(
+    c.Candidate == 2 && !c.Met && c.Valid && c.Reason.find("no candidate") != std::string::npos,
+    "unreachable error: the most accurate, said");
+
+  Budget tb;
+  tb.SetSeconds(1.01 * t[1]);
+  c = Choose(model, probe, tb);
+  ok &= Check(c.Candidate == 1 && c.Met, "time budget: the most accurate within");
+  tb.SetSeconds(0.5 * t[0]);
+  c = Choose(model, probe, tb);
+  ok &= Check(c.Candidate == 0 && !c.Met && c.Valid, "unreachable time: the fastest");
+
+  Budget both;
+  both.SetError(1.01 * e[0]);
+  both.SetSeconds(1.01 * t[1]);
+  c = Choose(model, probe, both);
+  ok &= Check(c.Candidate == 0 && c.Met, "both: the fastest meeting both");
+  both.SetError(1.01 * e[2]);
+  c = Choose(model, probe, both); // error wants 2, time allows 1: most accurate in time
+  ok &= Check(c.Candidate == 1 && !c.Met, "both, error out of reach in time: best in time");
+
+  for (double bad : { 0.0, -0.05, std::numeric_limits<double>::quiet_NaN() })
+  {
+    Budget badError;
+    badError.SetError(bad);
+    c = Choose(model, probe, badError);
+    ok &= Check(c.Candidate == 2 && !c.Valid && !c.Met, "bad error budget: the most accurate");
+    Budget badTime;
+    badTime.SetSeconds(bad);
+    c = Choose(model, probe, badTime);
+    ok &= Check(c.Candidate == 0 && !c.Valid && !c.Met, "bad time budget: the fastest");
+  }
+  std::printf("bad budget: %s\n", c.Reason.c_str());
+  c = Choose(model, probe, b, [](const Knobs& k) { return k.Order == 4; });
+  ok &= Check(c.Candidate == 1, "allowed: only order 4");
+  c = Choose(model, probe, b, [](const Knobs&) { return false; });
+  ok &= Check(c.Candidate < 0 && !c.Valid, "nothing allowed: no choice");
+
+  // Budgets as users type them.
+  double v = 0.0;
+  ok &= Check(ParseErrorBudget("5%", v) && Near(v, 0.05, 1e-12), "5%");
+  ok &= Check(ParseErrorBudget("0.05", v) && Near(v, 0.05, 1e-12), "0.05");
+  ok &=
+    Check(!ParseErrorBudget("5 %%", v) && !ParseErrorBudget("five", v) && !ParseErrorBudget("", v),
+      "bad error text");
+  ok &= Check(ParseTimeBudget("16ms", v) && Near(v, 0.016, 1e-12), "16ms");
+  ok &= Check(ParseTimeBudget("0.2s", v) && Near(v, 0.2, 1e-12), "0.2s");
+  ok &= Check(ParseTimeBudget("0.2", v) && Near(v, 0.2, 1e-12), "0.2");
+  ok &= Check(!ParseTimeBudget("16 minutes", v), "bad time text");
+
+  // The model that ships: read, every prediction finite and positive, and
+  // for each candidate the time grows with the receivers.
+  const Model& shipped = Model::Default();
+  ok &= Check(shipped.Candidates.size() >= 8 && shipped.Scenes >= 5, "the shipped model");
+  SceneFeatures small = probe, large = probe;
+  small.Receivers = 1e4;
+  large.Receivers = 1e5;
+  for (std::size_t k = 0; k < shipped.Candidates.size(); ++k)
+  {
+    const double ts = shipped.PredictSeconds(k, small), tl = shipped.PredictSeconds(k, large);
+    const double es = shipped.PredictError(k, small);
+    ok &= Check(std::isfinite(ts) && std::isfinite(tl) && std::isfinite(es) && ts > 0.0 &&
+        es > 0.0 && tl >= ts,
+      "shipped: finite, positive, time grows with receivers");
+  }
+
+  // The filter: a budget sets its effective knobs and the plan says so.
+  const pgitest::HardScene scene = pgitest::HardScenes()[3]; // a ground under 4 spheres
+  vtkNew<vtkPGILighting> sky;
+  vtkNew<vtkPGIGlobalIllumination> gi;
+  gi->SetInputData(scene.Receivers);
+  gi->SetInputData(1, scene.Proxies);
+  gi->SetLighting(sky);
+  gi->GetSettings()->SetOrder(4);
+  gi->SetErrorBudget(0.5); // generous: the fastest candidate
+  gi->Update();
+  const auto planHas = [&](const std::string& text)
+  {
+    for (const std::string& line : gi->GetPlan())
+    {
+      if (line.find(text) != std::string::npos)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  for (const std::string& line : gi->GetPlan())
+  {
+    if (line.rfind("budget", 0) == 0)
+    {
+      std::printf("plan: %s\n", line.c_str());
+    }
+  }
+  ok &= Check(planHas("budget: order ") && planHas("predicted error"), "plan: the choice");
+  ok &= Check(gi->GetSettings()->GetOrder() == 4, "the user's settings are left alone");
+  ok &= Check(pgitest::NonFiniteValues(gi->GetOutput()->GetPointData()->GetArray("Radiance")) == 0,
+    "finite output");
+  gi->SetErrorBudget(0.0);
+  gi->SetTimeBudget(1e-9); // nothing fits: the fastest, said
+  gi->Update();
+  ok &= Check(planHas("NOT MET") && planHas("the fastest instead"), "plan: time not met");
+  vtkNew<vtkCallbackCommand> warned;
+  warned->SetCallback(CountWarning);
+  gi->AddObserver(vtkCommand::WarningEvent, warned);
+  gi->SetTimeBudget(-1.0); // bad: a warning, and it still shades
+  gi->Update();
+  ok &= Check(Warnings == 1 && planHas("a time budget must be positive"), "bad budget: warned");
+  ok &= Check(pgitest::NonFiniteValues(gi->GetOutput()->GetPointData()->GetArray("Radiance")) == 0,
+    "bad budget: still shades");
+  gi->SetTimeBudget(0.0);
+  gi->Update();
+  ok &= Check(!planHas("budget:"), "no budget: no budget line");
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}

@@ -1,0 +1,851 @@
+#include "pgiAccuracyBudget.h"
+
+#include "pgiBrightLights.h"
+#include "pgiDefaultBudgetModel.h"
+#include "pgiEnvironmentMap.h"
+#include "vtkPGIGISettings.h"
+#include "vtkPGILighting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace proxygi
+{
+namespace budget
+{
+namespace
+{
+// Units of the time model's terms, so its coefficients are of order one.
+constexpr double ReceiverUnit = 1e4, SphereUnit = 1e2;
+
+std::string Percent(double fraction)
+{
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f%%", 100.0 * fraction);
+  return text;
+}
+
+std::string Milliseconds(double seconds)
+{
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.0f ms", 1e3 * seconds);
+  return text;
+}
+
+// Dense least squares by the normal equations (a few unknowns), with a
+// ridge per column (empty: none) so collinear terms stay finite.
+bool SolveLeastSquares(const std::vector<std::vector<double>>& rows,
+  const std::vector<double>& values, const std::vector<double>& weights, std::size_t unknowns,
+  const std::vector<double>& ridge, std::vector<double>& x)
+{
+  std::vector<double> a(unknowns * unknowns, 0.0), b(unknowns, 0.0);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+  {
+    for (std::size_t i = 0; i < unknowns; ++i)
+    {
+      b[i] += weights[r] * rows[r][i] * values[r];
+      for (std::size_t j = 0; j < unknowns; ++j)
+      {
+        a[i * unknowns + j] += weights[r] * rows[r][i] * rows[r][j];
+      }
+    }
+  }
+  for (std::size_t i = 0; i < ridge.size() && i < unknowns; ++i)
+  {
+    a[i * unknowns + i] += ridge[i];
+  }
+  // Gaussian elimination with partial pivoting.
+  for (std::size_t c = 0; c < unknowns; ++c)
+  {
+    std::size_t pivot = c;
+    for (std::size_t r = c + 1; r < unknowns; ++r)
+    {
+      if (std::fabs(a[r * unknowns + c]) > std::fabs(a[pivot * unknowns + c]))
+      {
+        pivot = r;
+      }
+    }
+    if (!(std::fabs(a[pivot * unknowns + c]) > 1e-300))
+    {
+      return false;
+    }
+    if (pivot != c)
+    {
+      for (std::size_t j = 0; j < unknowns; ++j)
+      {
+        std::swap(a[c * unknowns + j], a[pivot * unknowns + j]);
+      }
+      std::swap(b[c], b[pivot]);
+    }
+    for (std::size_t r = c + 1; r < unknowns; ++r)
+    {
+      const double f = a[r * unknowns + c] / a[c * unknowns + c];
+      for (std::size_t j = c; j < unknowns; ++j)
+      {
+        a[r * unknowns + j] -= f * a[c * unknowns + j];
+      }
+      b[r] -= f * b[c];
+    }
+  }
+  x.assign(unknowns, 0.0);
+  for (std::size_t c = unknowns; c-- > 0;)
+  {
+    double s = b[c];
+    for (std::size_t j = c + 1; j < unknowns; ++j)
+    {
+      s -= a[c * unknowns + j] * x[j];
+    }
+    x[c] = s / a[c * unknowns + c];
+  }
+  return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
+}
+
+// P is the candidate's sphere count over the scene's meshes: the scene's
+// own count is the one the proxies were built with.
+constexpr int TimeTermCount = 5;
+std::array<double, TimeTermCount> TimeTerms(const SceneFeatures& f, const Knobs& k)
+{
+  const double r = f.Receivers / ReceiverUnit;
+  return { { 1.0, f.Map, r, r * k.Spheres * std::max(1.0, f.Objects) / SphereUnit,
+    r * f.BrightLights } };
+}
+
+double Evaluate(const std::array<double, TimeTermCount>& c, const SceneFeatures& f, const Knobs& k)
+{
+  const auto terms = TimeTerms(f, k);
+  double t = 0.0;
+  for (int i = 0; i < TimeTermCount; ++i)
+  {
+    t += c[i] * terms[i];
+  }
+  return t;
+}
+
+// The time law with non-negative coefficients, least squares on relative
+// error: the best of the subsets of terms whose solution is non-negative.
+std::array<double, TimeTermCount> FitTime(const std::vector<const Measurement*>& rows)
+{
+  std::array<double, TimeTermCount> best{};
+  double bestResidual = std::numeric_limits<double>::infinity();
+  for (int subset = 1; subset < (1 << TimeTermCount); ++subset)
+  {
+    std::vector<int> terms;
+    for (int t = 0; t < TimeTermCount; ++t)
+    {
+      if (subset & (1 << t))
+      {
+        terms.push_back(t);
+      }
+    }
+    std::vector<std::vector<double>> design;
+    std::vector<double> values, weights;
+    for (const Measurement* m : rows)
+    {
+      const auto all = TimeTerms(m->Features, m->Settings);
+      std::vector<double> row;
+      row.reserve(terms.size());
+      for (int t : terms)
+      {
+        row.push_back(all[t]);
+      }
+      design.push_back(row);
+      values.push_back(m->Seconds);
+      weights.push_back(1.0 / std::max(1e-6, m->Seconds * m->Seconds));
+    }
+    std::vector<double> x;
+    if (!SolveLeastSquares(design, values, weights, terms.size(), {}, x) ||
+      std::any_of(x.begin(), x.end(), [](double v) { return v < 0.0; }))
+    {
+      continue;
+    }
+    std::array<double, TimeTermCount> c{};
+    for (std::size_t i = 0; i < terms.size(); ++i)
+    {
+      c[terms[i]] = x[i];
+    }
+    double residual = 0.0;
+    for (const Measurement* m : rows)
+    {
+      const double e =
+        (Evaluate(c, m->Features, m->Settings) - m->Seconds) / std::max(1e-6, m->Seconds);
+      residual += e * e;
+    }
+    // A term whose column is all zero (no map anywhere) solves to 0: the
+    // smaller subset wins ties.
+    if (residual < bestResidual * (1.0 - 1e-9))
+    {
+      bestResidual = residual;
+      best = c;
+    }
+  }
+  return best;
+}
+
+double ObjectsTerm(const SceneFeatures& f)
+{
+  return std::log2(std::max(1.0, f.Objects));
+}
+constexpr double SlopeRidge = 0.1, SharedRidge = 1e-3;
+
+bool Finite(double v)
+{
+  return std::isfinite(v);
+}
+} // namespace
+
+std::string Knobs::Describe() const
+{
+  std::ostringstream s;
+  s << "order " << this->Order;
+  if (this->ShadowedIndirect && this->IndirectOrder > 0 && this->IndirectOrder < this->Order)
+  {
+    s << " (bounce " << this->IndirectOrder << ")";
+  }
+  s << ", " << this->Spheres << " spheres, "
+    << (this->SelfVisibility > 0 ? "traced self-visibility" : "self-shadow rules") << ", "
+    << (this->ShadowedIndirect ? "shadowed" : "unshadowed") << " bounce";
+  if (this->HierarchyAngle != 25.0)
+  {
+    s << ", hierarchy " << this->HierarchyAngle << " deg";
+  }
+  return s.str();
+}
+
+void Knobs::Apply(vtkPGIGISettings* settings) const
+{
+  settings->SetOrder(this->Order);
+  settings->SetIndirectOrder(this->IndirectOrder);
+  settings->SetIndirectMode(this->ShadowedIndirect ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
+                                                   : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
+  settings->SetHierarchyAngle(this->HierarchyAngle);
+}
+
+bool Knobs::operator==(const Knobs& o) const
+{
+  return this->Order == o.Order && this->IndirectOrder == o.IndirectOrder &&
+    this->Spheres == o.Spheres && this->SelfVisibility == o.SelfVisibility &&
+    this->ShadowedIndirect == o.ShadowedIndirect && this->HierarchyAngle == o.HierarchyAngle;
+}
+
+std::vector<Knobs> DefaultGrid()
+{
+  std::vector<Knobs> grid;
+  for (int order : { 3, 4, 6, 8 })
+  {
+    for (int spheres : { 16, 64 })
+    {
+      for (int self : { 0, 256 })
+      {
+        for (bool shadowed : { false, true })
+        {
+          Knobs k;
+          k.Order = order;
+          k.IndirectOrder = std::min(order, 4);
+          k.Spheres = spheres;
+          k.SelfVisibility = self;
+          k.ShadowedIndirect = shadowed;
+          grid.push_back(k);
+        }
+      }
+    }
+  }
+  return grid;
+}
+
+void SceneFeatures::SetLight(const EnvironmentMap* map)
+{
+  this->PeakFraction = 0.0;
+  this->Directionality = 0.0;
+  this->BrightLights = 0.0;
+  this->Map = map ? 1.0 : 0.0;
+  if (!map)
+  {
+    return;
+  }
+  BrightLightResult bright;
+  ExtractBrightLights(*map, BrightLightOptions(), bright);
+  this->PeakFraction = bright.BrightestFraction;
+  this->BrightLights = static_cast<double>(bright.Lights.size());
+  double r[9], g[9], b[9];
+  map->ProjectSH(3, r, g, b);
+  double y[9];
+  for (int i = 0; i < 9; ++i)
+  {
+    y[i] = 0.2126 * r[i] + 0.7152 * g[i] + 0.0722 * b[i];
+  }
+  double higher = 0.0;
+  for (int i = 1; i < 9; ++i)
+  {
+    higher += y[i] * y[i];
+  }
+  this->Directionality = std::fabs(y[0]) > 0.0 ? std::sqrt(higher) / std::fabs(y[0]) : 0.0;
+}
+
+bool SceneFeatures::SetLight(vtkPGILighting* lighting, std::string& error)
+{
+  if (!lighting)
+  {
+    error = "no lighting";
+    return false;
+  }
+  const bool hasMap = lighting->GetEnvironmentImage() ||
+    (lighting->GetEnvironmentFileName() && *lighting->GetEnvironmentFileName());
+  if (!hasMap)
+  {
+    this->SetLight(nullptr);
+    return true;
+  }
+  const EnvironmentMap* map = nullptr;
+  if (!lighting->GetEnvironment(map, error) || !map)
+  {
+    return false;
+  }
+  this->SetLight(map);
+  return true;
+}
+
+std::array<double, NumberOfErrorFeatures> ErrorFeatures(const SceneFeatures& f)
+{
+  return { { f.PeakFraction, f.Directionality, std::log2(std::max(1.0, f.Objects)) } };
+}
+
+std::string WriteMeasurements(const std::vector<Measurement>& rows)
+{
+  std::ostringstream s;
+  s.precision(9);
+  s << "scene,receivers,spheres_total,objects,peak_fraction,directionality,order,indirect_order,"
+       "spheres,self_visibility,shadowed_indirect,hierarchy_angle,seconds,error,bright_lights,map,"
+       "check_error\n";
+  for (const Measurement& m : rows)
+  {
+    std::string scene = m.Scene;
+    std::replace(scene.begin(), scene.end(), ',', ';');
+    s << scene << "," << m.Features.Receivers << "," << m.Features.Spheres << ","
+      << m.Features.Objects << "," << m.Features.PeakFraction << "," << m.Features.Directionality
+      << "," << m.Settings.Order << "," << m.Settings.IndirectOrder << "," << m.Settings.Spheres
+      << "," << m.Settings.SelfVisibility << "," << (m.Settings.ShadowedIndirect ? 1 : 0) << ","
+      << m.Settings.HierarchyAngle << "," << m.Seconds << "," << m.Error << ","
+      << m.Features.BrightLights << "," << m.Features.Map << "," << m.CheckError << "\n";
+  }
+  return s.str();
+}
+
+bool ReadMeasurements(const std::string& text, std::vector<Measurement>& rows, std::string& error)
+{
+  std::istringstream in(text);
+  std::string line;
+  int number = 0;
+  rows.clear();
+  while (std::getline(in, line))
+  {
+    ++number;
+    if (number == 1 || line.empty())
+    {
+      continue;
+    }
+    std::vector<std::string> cells;
+    std::stringstream cellStream(line);
+    std::string cell;
+    while (std::getline(cellStream, cell, ','))
+    {
+      cells.push_back(cell);
+    }
+    if (cells.size() != 17)
+    {
+      error = "line " + std::to_string(number) + ": 17 fields expected";
+      return false;
+    }
+    Measurement m;
+    try
+    {
+      m.Scene = cells[0];
+      m.Features.Receivers = std::stod(cells[1]);
+      m.Features.Spheres = std::stod(cells[2]);
+      m.Features.Objects = std::stod(cells[3]);
+      m.Features.PeakFraction = std::stod(cells[4]);
+      m.Features.Directionality = std::stod(cells[5]);
+      m.Settings.Order = std::stoi(cells[6]);
+      m.Settings.IndirectOrder = std::stoi(cells[7]);
+      m.Settings.Spheres = std::stoi(cells[8]);
+      m.Settings.SelfVisibility = std::stoi(cells[9]);
+      m.Settings.ShadowedIndirect = std::stoi(cells[10]) != 0;
+      m.Settings.HierarchyAngle = std::stod(cells[11]);
+      m.Seconds = std::stod(cells[12]);
+      m.Error = std::stod(cells[13]);
+      m.Features.BrightLights = std::stod(cells[14]);
+      m.Features.Map = std::stod(cells[15]);
+      m.CheckError = std::stod(cells[16]);
+    }
+    catch (const std::exception&)
+    {
+      error = "line " + std::to_string(number) + ": not a number";
+      return false;
+    }
+    rows.push_back(m);
+  }
+  return true;
+}
+
+bool Model::Fit(const std::vector<Measurement>& rows, std::string& error)
+{
+  // Candidates in first-seen order, with their usable rows.
+  std::vector<Knobs> knobs;
+  std::vector<std::vector<const Measurement*>> byCandidate;
+  std::set<std::string> scenes;
+  for (const Measurement& m : rows)
+  {
+    if (!(m.Seconds > 0.0) || !(m.Error > 0.0) || !Finite(m.Seconds) || !Finite(m.Error))
+    {
+      continue;
+    }
+    auto it = std::find(knobs.begin(), knobs.end(), m.Settings);
+    if (it == knobs.end())
+    {
+      knobs.push_back(m.Settings);
+      byCandidate.emplace_back();
+      it = knobs.end() - 1;
+    }
+    byCandidate[it - knobs.begin()].push_back(&m);
+    scenes.insert(m.Scene);
+  }
+  std::vector<Candidate> fitted;
+  std::vector<const Measurement*> used;
+  std::vector<std::size_t> usedCandidate;
+  for (std::size_t k = 0; k < knobs.size(); ++k)
+  {
+    std::set<std::string> own;
+    for (const Measurement* m : byCandidate[k])
+    {
+      own.insert(m->Scene);
+    }
+    if (own.size() < 2)
+    {
+      continue;
+    }
+    Candidate c;
+    c.Settings = knobs[k];
+    c.Time = FitTime(byCandidate[k]);
+    for (const Measurement* m : byCandidate[k])
+    {
+      used.push_back(m);
+      usedCandidate.push_back(fitted.size());
+    }
+    fitted.push_back(c);
+  }
+  if (fitted.empty())
+  {
+    error = "no candidate has measurements on two scenes or more";
+    return false;
+  }
+  // log e = u_k + v_k log2(objects) + w . x: K intercepts, K slopes (how a
+  // candidate fares as objects shadow each other: fewer spheres do better
+  // there, more on one object), then the shared weights. The ridge pulls
+  // the slopes towards the shared one.
+  const std::size_t count = fitted.size();
+  const std::size_t unknowns = 2 * count + NumberOfErrorFeatures;
+  std::vector<std::vector<double>> design;
+  std::vector<double> values, weights;
+  for (std::size_t r = 0; r < used.size(); ++r)
+  {
+    std::vector<double> row(unknowns, 0.0);
+    row[usedCandidate[r]] = 1.0;
+    row[count + usedCandidate[r]] = ObjectsTerm(used[r]->Features);
+    const auto x = ErrorFeatures(used[r]->Features);
+    std::copy(x.begin(), x.end(), row.begin() + 2 * count);
+    design.push_back(row);
+    values.push_back(std::log(used[r]->Error));
+    weights.push_back(1.0);
+  }
+  std::vector<double> solution;
+  std::vector<double> ridge(unknowns, SharedRidge);
+  std::fill(ridge.begin(), ridge.begin() + count, 0.0);
+  std::fill(ridge.begin() + count, ridge.begin() + 2 * count, SlopeRidge);
+  if (!SolveLeastSquares(design, values, weights, unknowns, ridge, solution))
+  {
+    error = "the error model's least squares has no solution";
+    return false;
+  }
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    fitted[k].ErrorIntercept = solution[k];
+    fitted[k].ErrorObjectsSlope = solution[count + k];
+  }
+  for (int j = 0; j < NumberOfErrorFeatures; ++j)
+  {
+    this->ErrorWeights[j] = solution[2 * count + j];
+  }
+  this->Candidates = fitted;
+  double sum = 0.0;
+  for (std::size_t r = 0; r < used.size(); ++r)
+  {
+    const double e =
+      std::log(this->PredictError(usedCandidate[r], used[r]->Features)) - std::log(used[r]->Error);
+    sum += e * e;
+  }
+  this->ErrorSpread = std::sqrt(sum / std::max<std::size_t>(1, used.size()));
+  this->Scenes = static_cast<int>(scenes.size());
+  return true;
+}
+
+double Model::PredictSeconds(std::size_t k, const SceneFeatures& f) const
+{
+  return f.TimeScale * Evaluate(this->Candidates[k].Time, f, this->Candidates[k].Settings);
+}
+
+double Model::PredictError(std::size_t k, const SceneFeatures& f) const
+{
+  const auto x = ErrorFeatures(f);
+  double s =
+    this->Candidates[k].ErrorIntercept + this->Candidates[k].ErrorObjectsSlope * ObjectsTerm(f);
+  for (int j = 0; j < NumberOfErrorFeatures; ++j)
+  {
+    s += this->ErrorWeights[j] * x[j];
+  }
+  return f.ErrorScale * std::exp(s);
+}
+
+std::string Model::Write() const
+{
+  std::ostringstream s;
+  s.precision(9);
+  s << "# ProxyGI accuracy budget model (proxygi calibrate)\n"
+    << "version 2\n"
+    << "machine " << (this->Machine.empty() ? "unknown" : this->Machine) << "\n"
+    << "scenes " << this->Scenes << "\n"
+    << "error_weights";
+  for (double w : this->ErrorWeights)
+  {
+    s << " " << w;
+  }
+  s << "\nerror_spread " << this->ErrorSpread << "\n";
+  s << "# order indirect_order spheres self_visibility shadowed hierarchy | a m b c d (s) | u v\n";
+  for (const Candidate& c : this->Candidates)
+  {
+    const Knobs& k = c.Settings;
+    s << "candidate " << k.Order << " " << k.IndirectOrder << " " << k.Spheres << " "
+      << k.SelfVisibility << " " << (k.ShadowedIndirect ? 1 : 0) << " " << k.HierarchyAngle << " "
+      << c.Time[0] << " " << c.Time[1] << " " << c.Time[2] << " " << c.Time[3] << " " << c.Time[4]
+      << " " << c.ErrorIntercept << " " << c.ErrorObjectsSlope << "\n";
+  }
+  return s.str();
+}
+
+bool Model::Read(const std::string& text, std::string& error)
+{
+  Model m;
+  std::istringstream in(text);
+  std::string line;
+  bool version = false;
+  int number = 0;
+  while (std::getline(in, line))
+  {
+    ++number;
+    if (line.empty() || line[0] == '#')
+    {
+      continue;
+    }
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    bool ok = true;
+    if (key == "version")
+    {
+      int v = 0;
+      ok = static_cast<bool>(words >> v) && v == 2;
+      version = ok;
+    }
+    else if (key == "machine")
+    {
+      std::getline(words >> std::ws, m.Machine);
+    }
+    else if (key == "scenes")
+    {
+      ok = static_cast<bool>(words >> m.Scenes);
+    }
+    else if (key == "error_weights")
+    {
+      for (double& w : m.ErrorWeights)
+      {
+        ok = ok && static_cast<bool>(words >> w) && Finite(w);
+      }
+    }
+    else if (key == "error_spread")
+    {
+      ok = static_cast<bool>(words >> m.ErrorSpread) && Finite(m.ErrorSpread);
+    }
+    else if (key == "candidate")
+    {
+      Candidate c;
+      int shadowed = 0;
+      ok = static_cast<bool>(words >> c.Settings.Order >> c.Settings.IndirectOrder >>
+             c.Settings.Spheres >> c.Settings.SelfVisibility >> shadowed >>
+             c.Settings.HierarchyAngle >> c.Time[0] >> c.Time[1] >> c.Time[2] >> c.Time[3] >>
+             c.Time[4] >> c.ErrorIntercept >> c.ErrorObjectsSlope) &&
+        c.Settings.Order >= 2 && c.Settings.Order <= 8 && c.Settings.Spheres > 0 &&
+        std::all_of(c.Time.begin(), c.Time.end(), [](double t) { return t >= 0.0 && Finite(t); }) &&
+        Finite(c.ErrorIntercept) && Finite(c.ErrorObjectsSlope);
+      c.Settings.ShadowedIndirect = shadowed != 0;
+      m.Candidates.push_back(c);
+    }
+    else
+    {
+      ok = false;
+    }
+    if (!ok)
+    {
+      error = "budget model, line " + std::to_string(number) + ": cannot read '" + line + "'";
+      return false;
+    }
+  }
+  if (!version || m.Candidates.empty())
+  {
+    error = "not a budget model (version 2 with candidates expected)";
+    return false;
+  }
+  *this = m;
+  return true;
+}
+
+bool Model::Save(const std::string& path, std::string& error) const
+{
+  std::ofstream out(path);
+  out << this->Write();
+  if (!out)
+  {
+    error = "cannot write " + path;
+    return false;
+  }
+  return true;
+}
+
+bool Model::Load(const std::string& path, std::string& error)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    error = "cannot read " + path;
+    return false;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return this->Read(text.str(), error) || (error = path + ": " + error, false);
+}
+
+const Model& Model::Default()
+{
+  static const Model model = []()
+  {
+    Model m;
+    std::string error;
+    m.Read(pgiDefaultBudgetModel, error);
+    return m;
+  }();
+  return model;
+}
+
+Choice Choose(const Model& model, const SceneFeatures& scene, const Budget& budget,
+  const std::function<bool(const Knobs&)>& allowed)
+{
+  Choice choice;
+  std::vector<std::size_t> ks;
+  for (std::size_t k = 0; k < model.Candidates.size(); ++k)
+  {
+    if (!allowed || allowed(model.Candidates[k].Settings))
+    {
+      ks.push_back(k);
+    }
+  }
+  if (ks.empty())
+  {
+    choice.Valid = false;
+    choice.Reason = "the budget model has no candidate for these inputs";
+    return choice;
+  }
+  std::vector<double> error(model.Candidates.size()), seconds(model.Candidates.size());
+  std::size_t fastest = ks[0], mostAccurate = ks[0];
+  for (std::size_t k : ks)
+  {
+    error[k] = model.PredictError(k, scene);
+    seconds[k] = model.PredictSeconds(k, scene);
+    fastest = seconds[k] < seconds[fastest] ? k : fastest;
+    mostAccurate = error[k] < error[mostAccurate] ? k : mostAccurate;
+  }
+  const bool hasError = budget.HasError, hasTime = budget.HasTime;
+  std::string problem;
+  if (hasError && !(budget.Error > 0.0 && Finite(budget.Error)))
+  {
+    problem = "an error budget must be a positive fraction (5% or 0.05)";
+  }
+  if (hasTime && !(budget.Seconds > 0.0 && Finite(budget.Seconds)))
+  {
+    problem += std::string(problem.empty() ? "" : "; ") + "a time budget must be positive";
+  }
+  const double errorCap = hasError ? budget.Error : std::numeric_limits<double>::infinity();
+  const double timeCap = hasTime ? budget.Seconds : std::numeric_limits<double>::infinity();
+
+  std::ostringstream why;
+  std::size_t chosen = ks[0];
+  if (!problem.empty() || !budget.Any())
+  {
+    // Closest reachable: the most accurate for a bad error budget, the
+    // fastest for a bad time budget.
+    choice.Valid = budget.Any() ? false : true;
+    chosen = (hasError && !(budget.Error > 0.0 && Finite(budget.Error))) ? mostAccurate
+      : hasTime                                                          ? fastest
+                                                                         : mostAccurate;
+    why << (problem.empty() ? "no budget given" : problem) << ": the "
+        << (chosen == fastest ? "fastest" : "most accurate") << " candidate instead";
+  }
+  else
+  {
+    // Fastest among those meeting both; with a time budget only, the most
+    // accurate that fits in it.
+    int best = -1;
+    for (std::size_t k : ks)
+    {
+      if (error[k] > errorCap || seconds[k] > timeCap)
+      {
+        continue;
+      }
+      const bool better = best < 0 ||
+        (hasError
+            ? seconds[k] < seconds[best]
+            : (error[k] < error[best] || (error[k] == error[best] && seconds[k] < seconds[best])));
+      best = better ? static_cast<int>(k) : best;
+    }
+    if (best >= 0)
+    {
+      chosen = static_cast<std::size_t>(best);
+      choice.Met = true;
+      why << (hasError ? "the fastest predicted to stay within " + Percent(budget.Error)
+                       : "the most accurate predicted to fit in " + Milliseconds(budget.Seconds));
+      if (hasError && hasTime)
+      {
+        why << " and " << Milliseconds(budget.Seconds);
+      }
+    }
+    else if (hasTime && seconds[fastest] > timeCap)
+    {
+      chosen = fastest;
+      why << "no candidate is predicted to fit in " << Milliseconds(budget.Seconds)
+          << ": the fastest instead";
+    }
+    else
+    {
+      // The error budget is out of reach (within the time budget, if any).
+      int best2 = -1;
+      for (std::size_t k : ks)
+      {
+        if (seconds[k] <= timeCap && (best2 < 0 || error[k] < error[best2]))
+        {
+          best2 = static_cast<int>(k);
+        }
+      }
+      chosen = static_cast<std::size_t>(best2);
+      why << "no candidate" << (hasTime ? " that fits in " + Milliseconds(budget.Seconds) : "")
+          << " is predicted to stay within " << Percent(budget.Error)
+          << ": the most accurate instead";
+    }
+  }
+  choice.Candidate = static_cast<int>(chosen);
+  choice.Settings = model.Candidates[chosen].Settings;
+  choice.PredictedError = error[chosen];
+  choice.PredictedSeconds = seconds[chosen];
+  why << "; traded away: ";
+  if (chosen == mostAccurate)
+  {
+    why << "nothing in accuracy";
+  }
+  else
+  {
+    char points[32];
+    std::snprintf(points, sizeof(points), "%.1f", 100.0 * (error[chosen] - error[mostAccurate]));
+    why << points << " points of error against the most accurate (" << Percent(error[mostAccurate])
+        << " in " << Milliseconds(seconds[mostAccurate]) << ")";
+  }
+  if (chosen != fastest)
+  {
+    why << ", " << Milliseconds(seconds[chosen] - seconds[fastest]) << " against the fastest ("
+        << Milliseconds(seconds[fastest]) << ", " << Percent(error[fastest]) << ")";
+  }
+  choice.Reason = why.str();
+  return choice;
+}
+
+Choice Recheck(const Model& model, SceneFeatures& scene, const Budget& budget, const Choice& ran,
+  double measuredError, double measuredSeconds, const std::function<bool(const Knobs&)>& allowed)
+{
+  if (measuredError > 0.0 && ran.PredictedError > 0.0 && Finite(measuredError))
+  {
+    scene.ErrorScale *= measuredError / ran.PredictedError;
+  }
+  if (measuredSeconds > 0.0 && ran.PredictedSeconds > 0.0 && Finite(measuredSeconds))
+  {
+    scene.TimeScale *= measuredSeconds / ran.PredictedSeconds;
+  }
+  return Choose(model, scene, budget, allowed);
+}
+
+bool FirstServesBetter(
+  const Budget& budget, double errorA, double secondsA, double errorB, double secondsB)
+{
+  const auto meets = [&](double e, double t)
+  { return (!budget.HasError || e <= budget.Error) && (!budget.HasTime || t <= budget.Seconds); };
+  const bool a = meets(errorA, secondsA), b = meets(errorB, secondsB);
+  if (a != b)
+  {
+    return a;
+  }
+  if (a)
+  {
+    return budget.HasError ? secondsA <= secondsB : errorA <= errorB;
+  }
+  return budget.HasError ? errorA <= errorB : secondsA <= secondsB;
+}
+
+namespace
+{
+// A number and one of `units` (name, scale); no unit means scale 1.
+bool ParseScaled(const std::string& text,
+  std::initializer_list<std::pair<const char*, double>> units, double& value)
+{
+  value = 0.0;
+  try
+  {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    const std::string unit = text.substr(used);
+    double scale = unit.empty() ? 1.0 : 0.0;
+    for (const auto& u : units)
+    {
+      scale = unit == u.first ? u.second : scale;
+    }
+    value = v * scale;
+    return scale != 0.0 && Finite(v);
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
+}
+} // namespace
+
+bool ParseErrorBudget(const std::string& text, double& fraction)
+{
+  return ParseScaled(text, { { "%", 0.01 } }, fraction);
+}
+
+bool ParseTimeBudget(const std::string& text, double& seconds)
+{
+  return ParseScaled(text, { { "ms", 1e-3 }, { "s", 1.0 } }, seconds);
+}
+
+} // namespace budget
+} // namespace proxygi

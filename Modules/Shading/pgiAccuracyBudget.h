@@ -1,0 +1,213 @@
+/**
+ * @file pgiAccuracyBudget.h
+ * @brief The accuracy budget: a cost and error model of the CPU filter's
+ * knobs, fitted from measurements against Embree, and the choice of the
+ * knobs that meet a user's error or time budget.
+ *
+ * The model has one row per candidate (a point of the knob grid, Knobs):
+ *  - time: t = a + m M + b R + c R P + d R L (M 1 with a map, R receivers
+ *    in 1e4, P the candidate's spheres per mesh times the meshes in 1e2, L
+ *    the map's bright lights),
+ *    fitted per candidate by non-negative least squares on relative error;
+ *  - error: log e = u_k + v_k log2(objects) + w . x(scene), an intercept
+ *    and a slope on the objects per candidate (the ridge pulls the slopes to
+ *    0) and weights shared by all, x the scene's light and geometry
+ *    (ErrorFeatures).
+ * Both are cheap to evaluate from SceneFeatures, which the CLI and the filter
+ * compute before shading. The times belong to the machine they were measured
+ * on: `proxygi calibrate` refits them (and the error) on the user's own.
+ */
+#ifndef pgiAccuracyBudget_h
+#define pgiAccuracyBudget_h
+
+#include "ProxyGIShadingModule.h"
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+class vtkPGIGISettings;
+class vtkPGILighting;
+
+namespace proxygi
+{
+class EnvironmentMap;
+
+namespace budget
+{
+
+/// One point of the knob grid the budget chooses from (the CPU filter's
+/// route; bright lights taken out and shadowed by rays, occlusion-fitted
+/// proxies, hierarchy cuts as set).
+struct PROXYGISHADING_EXPORT Knobs
+{
+  int Order = 6;
+  int IndirectOrder = 4;    ///< the shadowed bounce's order (0: Order)
+  int Spheres = 64;         ///< leaf spheres per mesh (proxies are built upstream)
+  int SelfVisibility = 256; ///< rays per vertex of the meshes' own visibility (0: the rules)
+  bool ShadowedIndirect = true;
+  double HierarchyAngle = 25.0;
+
+  /// "order 6 (bounce 4), 64 spheres, traced self, shadowed bounce".
+  std::string Describe() const;
+  /// Sets order, indirect order and mode, hierarchy angle on `settings`
+  /// (sphere count and self-visibility are the caller's: they are upstream).
+  void Apply(vtkPGIGISettings* settings) const;
+  bool operator==(const Knobs& other) const;
+};
+
+/// The grid `proxygi calibrate` measures by default: orders 3, 4, 6, 8
+/// (bounce at min(order, 4)), 16 or 64 spheres, traced self-visibility or the
+/// rules, shadowed or unshadowed bounce.
+PROXYGISHADING_EXPORT std::vector<Knobs> DefaultGrid();
+
+/// What the model predicts from; cheap to compute before any shading.
+struct PROXYGISHADING_EXPORT SceneFeatures
+{
+  double Receivers = 0.0; ///< points shaded (all receivers of a frame)
+  /// Leaf proxy spheres the scene was measured with (recorded; the model
+  /// uses each candidate's own count times Objects).
+  double Spheres = 0.0;
+  double Objects = 1.0; ///< meshes that cast shadows
+  /// The brightest compact peak's share of the light's power (a sun).
+  double PeakFraction = 0.0;
+  /// |SH bands 1-2| / band 0 of the light's luminance: how directional it is.
+  double Directionality = 0.0;
+  /// The map's compact peaks a filter takes out as distant lights (each
+  /// costs its shadow rays per receiver), and whether there is a map at all
+  /// (its projection is a fixed cost).
+  double BrightLights = 0.0, Map = 0.0;
+  /// Measured over predicted error and time on this scene, from a check
+  /// (Recheck; 1: none). They scale every prediction.
+  double ErrorScale = 1.0, TimeScale = 1.0;
+
+  /// Receivers, spheres and objects as given, the light's terms from `map`
+  /// (nullptr: a uniform sky, both 0).
+  void SetLight(const EnvironmentMap* map);
+  /// Both light terms from a vtkPGILighting (its map, or its uniform sky).
+  bool SetLight(vtkPGILighting* lighting, std::string& error);
+};
+
+constexpr int NumberOfErrorFeatures = 3;
+/// x(scene) of the error model: peak fraction, directionality, log2 objects.
+PROXYGISHADING_EXPORT std::array<double, NumberOfErrorFeatures> ErrorFeatures(
+  const SceneFeatures& f);
+
+/// One run of one candidate on one scene, against the reference.
+struct PROXYGISHADING_EXPORT Measurement
+{
+  std::string Scene;
+  SceneFeatures Features;
+  Knobs Settings;
+  double Seconds = 0.0; ///< one filter update over every receiver
+  double Error = 0.0;   ///< relative RMSE against Embree
+  /// The same error as a check estimates it from a cheap Embree run
+  /// (EstimatedRelativeRMSE; -1: not measured).
+  double CheckError = -1.0;
+};
+
+/// Measurements as CSV (one header line), and back.
+PROXYGISHADING_EXPORT std::string WriteMeasurements(const std::vector<Measurement>& rows);
+PROXYGISHADING_EXPORT bool ReadMeasurements(
+  const std::string& text, std::vector<Measurement>& rows, std::string& error);
+
+class PROXYGISHADING_EXPORT Model
+{
+public:
+  struct Candidate
+  {
+    Knobs Settings;
+    std::array<double, 5> Time{ { 0.0, 0.0, 0.0, 0.0, 0.0 } }; ///< a, m, b, c, d
+    double ErrorIntercept = 0.0;                               ///< u_k
+    double ErrorObjectsSlope = 0.0;                            ///< v_k, on log2 of the objects
+  };
+  std::vector<Candidate> Candidates;
+  std::array<double, NumberOfErrorFeatures> ErrorWeights{ { 0.0, 0.0, 0.0 } };
+  /// RMS of the fit's log-error residuals: exp(+-spread) brackets ~2/3 of
+  /// the scenes.
+  double ErrorSpread = 0.0;
+  std::string Machine; ///< where the times were measured
+  int Scenes = 0;      ///< scenes it was fitted on
+
+  /// Fits every candidate that has measurements on at least two scenes.
+  /// False with a message when none has.
+  bool Fit(const std::vector<Measurement>& rows, std::string& error);
+  double PredictSeconds(std::size_t candidate, const SceneFeatures& f) const;
+  double PredictError(std::size_t candidate, const SceneFeatures& f) const;
+
+  std::string Write() const;
+  bool Read(const std::string& text, std::string& error);
+  bool Save(const std::string& path, std::string& error) const;
+  bool Load(const std::string& path, std::string& error);
+  /// The model that ships with ProxyGI (fitted on the project's scenes on
+  /// its 2-core CI machine, see Documentation/AccuracyTime.md).
+  static const Model& Default();
+};
+
+/// A budget: relative RMSE against the truth and seconds per filter update,
+/// each only where its Has flag is set (a given 0 is a bad budget, not none).
+struct PROXYGISHADING_EXPORT Budget
+{
+  double Error = 0.0;
+  double Seconds = 0.0;
+  bool HasError = false, HasTime = false;
+  bool Any() const { return this->HasError || this->HasTime; }
+  void SetError(double fraction)
+  {
+    this->Error = fraction;
+    this->HasError = true;
+  }
+  void SetSeconds(double seconds)
+  {
+    this->Seconds = seconds;
+    this->HasTime = true;
+  }
+};
+
+struct PROXYGISHADING_EXPORT Choice
+{
+  int Candidate = -1; ///< index into the model; -1 when the model is empty
+  Knobs Settings;
+  double PredictedError = 0.0, PredictedSeconds = 0.0;
+  bool Met = false;   ///< the prediction meets every budget given
+  bool Valid = true;  ///< the budget made sense (> 0, finite)
+  std::string Reason; ///< what it chose, why, and what it traded away
+};
+
+/**
+ * The settings for `budget` on a scene: with an error budget the fastest
+ * candidate predicted to meet it; with a time budget the most accurate
+ * predicted to fit in it; with both, the fastest that meets both. A budget
+ * nothing meets (or a bad one: zero, negative, not finite) gives the closest
+ * reachable candidate, Met false and the reason. `allowed` restricts the
+ * candidates (a filter cannot change its proxies or self-visibility).
+ */
+PROXYGISHADING_EXPORT Choice Choose(const Model& model, const SceneFeatures& scene,
+  const Budget& budget, const std::function<bool(const Knobs&)>& allowed = {});
+
+/**
+ * The check: `ran` was run on the scene and its error (estimated against
+ * Embree, EstimatedRelativeRMSE) and time measured. Scales the scene's
+ * predictions by measured / predicted (ErrorScale, TimeScale of `scene`)
+ * and chooses again.
+ */
+PROXYGISHADING_EXPORT Choice Recheck(const Model& model, SceneFeatures& scene, const Budget& budget,
+  const Choice& ran, double measuredError, double measuredSeconds,
+  const std::function<bool(const Knobs&)>& allowed = {});
+
+/// Of two runs measured (error, seconds), the one that serves `budget`
+/// better: one that meets it over one that does not; of two that do, the
+/// faster for an error budget, the more accurate for a time budget; of two
+/// that do not, the more accurate (error budget) or the faster. True: `a`.
+PROXYGISHADING_EXPORT bool FirstServesBetter(
+  const Budget& budget, double errorA, double secondsA, double errorB, double secondsB);
+
+/// Parses "5%", "0.05", "16ms", "0.2s". False on anything else.
+PROXYGISHADING_EXPORT bool ParseErrorBudget(const std::string& text, double& fraction);
+PROXYGISHADING_EXPORT bool ParseTimeBudget(const std::string& text, double& seconds);
+
+} // namespace budget
+} // namespace proxygi
+
+#endif
