@@ -118,6 +118,9 @@ Commands:
              box): precompute on Embree, then a point light moving along a
              path, relit per step; frames, time per frame, per-step change,
              error against Embree. Run 'proxygi cloud --help'.
+  calibrate  Measure the accuracy budget's candidates on scenes against
+             Embree and write the cost and error model that 'render
+             --error/--time' chooses with. Run 'proxygi calibrate --help'.
   reference  Embree path-traced ground truth of a scene (or the default
              scene), per pixel (EXR/PNG) or per vertex (.vtp), with its noise.
              Run 'proxygi reference --help'.
@@ -260,6 +263,10 @@ int main(int argc, char* argv[])
   if (command == "view")
   {
     return proxygi::cli::RunView(args);
+  }
+  if (command == "calibrate")
+  {
+    return proxygi::cli::RunCalibrate(args);
   }
   if (command == "cloud")
   {

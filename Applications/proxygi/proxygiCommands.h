@@ -25,6 +25,8 @@ int RunShade(const Args& args);
 int RunView(const Args& args);
 /// A scene's light cloud and a user light moving along a path through it.
 int RunCloud(const Args& args);
+/// The accuracy budget's model measured and fitted on this machine.
+int RunCalibrate(const Args& args);
 
 /// Value of the last "--name value" (or default); sets `ok` false on a bad number.
 std::string Option(const Args& args, const std::string& name, const std::string& fallback);

@@ -45,6 +45,22 @@ an option a mode has no use for as "note: ... does not apply".
 
   -o FILE             output PNG (default proxygi-render.png)
   --cache DIR         proxies and references are cached here (proxygi-cache)
+  --error E           accuracy budget: the fastest settings predicted to stay
+                      within E of Embree (5% or 0.05; relative RMSE per vertex)
+  --time T            time budget: the most accurate settings predicted to
+                      shade in T (200ms or 0.2s); with --error, the fastest
+                      meeting both. Either one chooses the order, the bounce's
+                      order and model, the spheres and the self-visibility
+                      among those the model holds (the knobs given stay as
+                      given), runs the CPU filter and prints the prediction,
+                      what it traded away, and the measured result
+  --budget-model FILE the model from 'proxygi calibrate' (default: the one
+                      that ships, measured on a 2-core machine)
+  --check N           check the budget's choice against Embree at N samples
+                      per vertex (16 is enough: its noise is taken out): the
+                      model's errors for this scene are scaled by what the
+                      check finds and, if that changes the choice, the scene
+                      is shaded again with the new one
   --order N           SH order 2..8 (default 6 in vertex mode, 4 in the GPU
                       modes; the GPU mapper runs up to 6, the image-space
                       pass up to 4, and says so)

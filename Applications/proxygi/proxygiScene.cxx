@@ -8,6 +8,7 @@
 #include "proxygiImage.h"
 #include "proxygiProgress.h"
 
+#include "pgiAccuracyBudget.h"
 #include "pgiEnvironmentMap.h"
 #include "pgiOffscreenWindow.h"
 #include "pgiSRGB.h"
@@ -51,6 +52,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -87,6 +89,16 @@ struct RenderOptions
   double HierarchyAngle = 25.0, Exposure = 0.0;
   std::string Output, Cache, Vtp, ReferencePNG;
   bool NoError = false, PixelError = false;
+  // --error / --time: the budget chooses the knobs (budget::Choose).
+  budget::Budget Budget;
+  std::string BudgetModel;
+  budget::Choice Chosen;
+  // What the choice was made from (ChooseForBudget), for the check.
+  budget::Model Model;
+  budget::SceneFeatures Features;
+  std::function<bool(const budget::Knobs&)> Allowed;
+  int CheckSpp = 0; // --check: Embree samples per vertex of the check (0: none)
+  bool Budgeted() const { return this->Budget.Any(); }
   bool Gpu() const { return this->Mode == "gpu"; }
   bool ImageSpace() const { return this->Mode == "image-space"; }
   bool Vertex() const { return this->Mode == "vertex"; }
@@ -97,6 +109,46 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
 {
   bool ok = true;
   o.Mode = Option(args, "--mode", "auto");
+  o.BudgetModel = Option(args, "--budget-model", "");
+  o.CheckSpp = static_cast<int>(NumberOption(args, "--check", 0, ok));
+  if (o.CheckSpp < 0 || (o.CheckSpp > 0 && !(Given(args, "--error") || Given(args, "--time"))))
+  {
+    vtkLogF(ERROR,
+      "proxygi render: --check N (N > 0 samples per vertex) checks a budget: give "
+      "--error or --time with it");
+    return false;
+  }
+  bool budgetOk = true;
+  double value = 0.0;
+  if (Given(args, "--error"))
+  {
+    budgetOk = budget::ParseErrorBudget(Option(args, "--error", ""), value);
+    o.Budget.SetError(value);
+  }
+  if (Given(args, "--time"))
+  {
+    budgetOk = budgetOk && budget::ParseTimeBudget(Option(args, "--time", ""), value);
+    o.Budget.SetSeconds(value);
+  }
+  if (!budgetOk)
+  {
+    vtkLogF(ERROR,
+      "proxygi render: --error takes a fraction or a percentage (0.05, 5%%), "
+      "--time seconds or milliseconds (0.2, 0.2s, 200ms)");
+    return false;
+  }
+  if (o.Budgeted() && o.Mode != "auto" && o.Mode != "vertex")
+  {
+    vtkLogF(ERROR,
+      "proxygi render: --error and --time choose the CPU filter's knobs (--mode vertex): the "
+      "budget model has no GPU candidates yet");
+    return false;
+  }
+  if (o.Budgeted() && o.Mode == "auto")
+  {
+    o.Mode = "vertex";
+    o.AutoReason = "--error/--time: the budget model's candidates are the CPU filter's";
+  }
   if (o.Mode == "auto")
   {
     // The fastest route: on a software rasteriser the CPU filter shades
@@ -234,6 +286,98 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   {
     notFor("--reference-spp", "--no-error");
     notFor("--pixel-reference-spp", "--no-error");
+  }
+  return true;
+}
+
+void UseKnobs(const budget::Knobs& k, RenderOptions& o)
+{
+  o.Order = k.Order;
+  o.IndirectOrder = k.IndirectOrder;
+  o.Spheres = k.Spheres;
+  o.SelfVisibility = k.SelfVisibility;
+  o.HierarchyAngle = k.HierarchyAngle;
+  if (o.IndirectName != "off")
+  {
+    o.IndirectName = k.ShadowedIndirect ? "shadowed" : "unshadowed";
+  }
+}
+
+// --error / --time: the knobs from the budget model (the one that ships, or
+// --budget-model), among the candidates that agree with the knobs given.
+bool ChooseForBudget(
+  const Args& args, RenderOptions& o, const SceneDescription& scene, const LoadedScene& loaded)
+{
+  o.Model = budget::Model::Default();
+  budget::Model& model = o.Model;
+  std::string error;
+  if (!o.BudgetModel.empty() && !model.Load(o.BudgetModel, error))
+  {
+    vtkLogF(ERROR, "proxygi render: %s", error.c_str());
+    return false;
+  }
+  budget::SceneFeatures& features = o.Features;
+  for (const auto& r : SceneReceivers(loaded))
+  {
+    features.Receivers += static_cast<double>(r->GetNumberOfPoints());
+  }
+  features.Objects = 0.0;
+  for (const SceneObject& object : scene.Objects)
+  {
+    features.Objects += object.Type == SceneObject::Kind::Mesh ? 1.0 : 0.0;
+  }
+  features.Objects = std::max(1.0, features.Objects);
+  if (!features.SetLight(loaded.Lighting, error))
+  {
+    vtkLogF(ERROR, "proxygi render: %s", error.c_str());
+    return false;
+  }
+  // The knobs given on the command line, as given.
+  const bool order = Given(args, "--order"), spheres = Given(args, "--spheres"),
+             self = Given(args, "--self-visibility"), indirect = Given(args, "--indirect"),
+             indirectOrder = Given(args, "--indirect-order"),
+             hierarchy = Given(args, "--hierarchy");
+  const budget::Knobs asGiven = { o.Order, o.IndirectOrder, o.Spheres, o.SelfVisibility,
+    o.IndirectName == "shadowed", o.HierarchyAngle };
+  o.Allowed = [=](const budget::Knobs& k)
+  {
+    return (!order || k.Order == asGiven.Order) && (!spheres || k.Spheres == asGiven.Spheres) &&
+      (!self || k.SelfVisibility == asGiven.SelfVisibility) &&
+      (!indirect || k.ShadowedIndirect == asGiven.ShadowedIndirect) &&
+      (!indirectOrder || k.IndirectOrder == asGiven.IndirectOrder) &&
+      (!hierarchy || k.HierarchyAngle == asGiven.HierarchyAngle);
+  };
+  const auto& allowed = o.Allowed;
+  const budget::Budget& b = o.Budget;
+  o.Chosen = budget::Choose(model, features, b, allowed);
+  if (o.Chosen.Candidate < 0)
+  {
+    vtkLogF(ERROR, "proxygi render: budget: %s", o.Chosen.Reason.c_str());
+    return false;
+  }
+  const budget::Knobs& k = o.Chosen.Settings;
+  UseKnobs(k, o);
+  std::string asked;
+  char text[64];
+  if (b.HasError)
+  {
+    std::snprintf(text, sizeof(text), "error %g%%", 100.0 * b.Error);
+    asked = text;
+  }
+  if (b.HasTime)
+  {
+    std::snprintf(text, sizeof(text), "%stime %g ms", asked.empty() ? "" : ", ", 1e3 * b.Seconds);
+    asked += text;
+  }
+  std::printf("budget: %s -> %s\n", asked.c_str(), k.Describe().c_str());
+  std::printf("budget: predicted error %.1f%% (x/%.2f), SH shading %.3f s on %s; %s\n",
+    100.0 * o.Chosen.PredictedError, std::exp(model.ErrorSpread), o.Chosen.PredictedSeconds,
+    model.Machine.c_str(), o.Chosen.Reason.c_str());
+  if (!o.Chosen.Met)
+  {
+    std::printf("budget: %s\n",
+      o.Chosen.Valid ? "cannot be met; running the closest reachable settings"
+                     : "not a usable budget; running the closest reachable settings");
   }
   return true;
 }
@@ -443,6 +587,10 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     return 1;
   }
   std::printf("scene: %s\n", scene.Name.c_str());
+  if (o.Budgeted() && !ChooseForBudget(args, o, scene, loaded))
+  {
+    return 2;
+  }
   if (!o.AutoReason.empty())
   {
     std::printf("mode: %s (auto: %s; --mode gpu|vertex|image-space to choose)\n", o.Mode.c_str(),
@@ -451,52 +599,148 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
 
   SceneProxies proxies;
   SetupProgress progress("proxygi render");
-  if (!BuildSceneProxies(scene, loaded, o.Spheres, o.Cache, proxies, error, &progress,
-        o.ProxyFit == "occlusion" ? ProxyFit::Occlusion : ProxyFit::Bounding))
+  std::vector<vtkSmartPointer<vtkPolyData>> receiversIn, shaded;
+  vtkIdType receivers = 0;
+  vtkSmartPointer<vtkPGIGISettings> settings, effective;
+  Clock::time_point t1, t2;
+  double occluderSeconds = 0.0;
+  // --check N: the choice's error estimated against Embree at N samples
+  // per vertex (EstimatedRelativeRMSE, against a reference of
+  // --reference-spp) and its time measured; the model's predictions for
+  // this scene scaled by measured / predicted and the choice made again
+  // (budget::Recheck). A new choice is prepared, shaded and checked too,
+  // and the one of the two that serves the budget better is kept.
+  std::vector<vtkSmartPointer<vtkPolyData>> cheap;
+  struct Attempt
   {
-    vtkLogF(ERROR, "proxygi render: %s%s", error.c_str(),
-      progress.Interrupted() ? "; nothing written, nothing cached" : "");
-    return progress.Interrupted() ? InterruptedExitCode : 1;
-  }
-  for (const auto& fit : proxies.Fits)
+    SceneProxies Proxies;
+    std::vector<vtkSmartPointer<vtkPolyData>> Receivers, Shaded;
+    vtkIdType Count = 0;
+    vtkSmartPointer<vtkPGIGISettings> Settings, Effective;
+    Clock::time_point T1, T2;
+    budget::Choice Chosen;
+    double Estimated = 0.0;
+  } first;
+  for (int attempt = 0; attempt < 2; ++attempt)
   {
-    std::printf("proxies of %s fitted for occlusion: rays where spheres and mesh disagree "
-                "%.1f%% -> %.1f%% of those the mesh blocks (bias %+.1f%% -> %+.1f%%)\n",
-      fit.Object.c_str(), 100.0 * fit.ErrorBefore, 100.0 * fit.ErrorAfter, 100.0 * fit.BiasBefore,
-      100.0 * fit.BiasAfter);
-  }
-  auto receiversIn = SceneReceivers(loaded);
-  if (o.Vertex() && o.SelfVisibility > 0)
-  {
-    double seconds = 0.0;
-    if (!AddSelfVisibility(
-          scene, receiversIn, o.Order, o.SelfVisibility, o.Cache, seconds, error, &progress))
+    proxies = SceneProxies();
+    if (!BuildSceneProxies(scene, loaded, o.Spheres, o.Cache, proxies, error, &progress,
+          o.ProxyFit == "occlusion" ? ProxyFit::Occlusion : ProxyFit::Bounding))
     {
-      vtkLogF(ERROR, "proxygi render: %s", error.c_str());
+      vtkLogF(ERROR, "proxygi render: %s%s", error.c_str(),
+        progress.Interrupted() ? "; nothing written, nothing cached" : "");
       return progress.Interrupted() ? InterruptedExitCode : 1;
     }
-    std::printf("self-visibility: %d rays per vertex, %s\n", o.SelfVisibility,
-      seconds > 0.0 ? ("traced in " + std::to_string(seconds) + " s").c_str() : "cached");
-  }
-  vtkIdType receivers = 0;
-  for (auto& s : receiversIn)
-  {
-    receivers += s->GetNumberOfPoints();
-  }
-  vtkSmartPointer<vtkPGIGISettings> settings = MakeSettings(o, scene);
-  vtkSmartPointer<vtkPGIGISettings> effective = ReportSettings(settings, o, proxies, loaded);
+    for (const auto& fit : proxies.Fits)
+    {
+      std::printf("proxies of %s fitted for occlusion: rays where spheres and mesh disagree "
+                  "%.1f%% -> %.1f%% of those the mesh blocks (bias %+.1f%% -> %+.1f%%)\n",
+        fit.Object.c_str(), 100.0 * fit.ErrorBefore, 100.0 * fit.ErrorAfter, 100.0 * fit.BiasBefore,
+        100.0 * fit.BiasAfter);
+    }
+    receiversIn = SceneReceivers(loaded);
+    if (o.Vertex() && o.SelfVisibility > 0)
+    {
+      double seconds = 0.0;
+      if (!AddSelfVisibility(
+            scene, receiversIn, o.Order, o.SelfVisibility, o.Cache, seconds, error, &progress))
+      {
+        vtkLogF(ERROR, "proxygi render: %s", error.c_str());
+        return progress.Interrupted() ? InterruptedExitCode : 1;
+      }
+      std::printf("self-visibility: %d rays per vertex, %s\n", o.SelfVisibility,
+        seconds > 0.0 ? ("traced in " + std::to_string(seconds) + " s").c_str() : "cached");
+    }
+    receivers = 0;
+    for (auto& s : receiversIn)
+    {
+      receivers += s->GetNumberOfPoints();
+    }
+    settings = MakeSettings(o, scene);
+    effective = ReportSettings(settings, o, proxies, loaded);
 
-  // Shading: the CPU filter before rendering (vertex), or the GPU while rendering.
-  const auto t1 = Clock::now();
-  std::vector<vtkSmartPointer<vtkPolyData>> shaded;
-  if (o.Vertex())
-  {
-    // The bright lights' shadows from the real meshes, as the reference's.
+    // The bright lights' shadows from the real meshes, as the reference's:
+    // their Embree scene is built once, before the shading is timed.
+    const auto t0 = Clock::now();
     vtkSmartPointer<vtkPGIOccluder> occluder =
-      o.BrightShadows == "rays" ? SceneOccluder(receiversIn) : nullptr;
-    shaded = ShadeOnCPU(receiversIn, settings, scene, loaded, proxies, occluder);
+      o.Vertex() && o.BrightShadows == "rays" ? SceneOccluder(receiversIn) : nullptr;
+    std::string occluderError;
+    if (occluder && !occluder->Prepare(occluderError))
+    {
+      vtkLogF(ERROR, "proxygi render: occluder: %s", occluderError.c_str());
+      return 1;
+    }
+    occluderSeconds = Seconds(t0, Clock::now());
+    // Shading: the CPU filter before rendering (vertex), or the GPU while rendering.
+    t1 = Clock::now();
+    if (o.Vertex())
+    {
+      shaded = ShadeOnCPU(receiversIn, settings, scene, loaded, proxies, occluder);
+    }
+    t2 = Clock::now();
+    if (!o.Budgeted() || o.CheckSpp <= 0 || !o.Vertex())
+    {
+      break;
+    }
+    double cheapSeconds = 0.0;
+    if (cheap.empty())
+    {
+      cheap = SceneReference(scene, loaded, SceneReceivers(loaded), o.CheckSpp, o.Cache, nullptr,
+        cheapSeconds, error, 7, true, &progress);
+      if (cheap.empty())
+      {
+        vtkLogF(ERROR, "proxygi render: budget check: %s", error.c_str());
+        return progress.Interrupted() ? InterruptedExitCode : 1;
+      }
+    }
+    const double estimated = EstimatedRelativeRMSE(shaded, cheap, o.CheckSpp, o.ReferenceSpp);
+    const double seconds = Seconds(t1, t2);
+    std::printf("budget check: Embree at %d samples per vertex estimates %.2f%% against %d "
+                "samples (predicted %.2f%%), SH shading %.3f s (predicted %.3f s)\n",
+      o.CheckSpp, 100.0 * estimated, o.ReferenceSpp, 100.0 * o.Chosen.PredictedError, seconds,
+      o.Chosen.PredictedSeconds);
+    if (attempt == 1)
+    {
+      if (budget::FirstServesBetter(
+            o.Budget, first.Estimated, Seconds(first.T1, first.T2), estimated, seconds))
+      {
+        std::printf("budget check: the first choice serves the budget better: kept (%s)\n",
+          first.Chosen.Settings.Describe().c_str());
+        proxies = first.Proxies;
+        receiversIn = first.Receivers;
+        shaded = first.Shaded;
+        receivers = first.Count;
+        settings = first.Settings;
+        effective = first.Effective;
+        t1 = first.T1;
+        t2 = first.T2;
+        o.Chosen = first.Chosen;
+        UseKnobs(o.Chosen.Settings, o);
+      }
+      else
+      {
+        std::printf("budget check: the new choice serves the budget better: kept\n");
+      }
+      break;
+    }
+    const budget::Choice again =
+      budget::Recheck(o.Model, o.Features, o.Budget, o.Chosen, estimated, seconds, o.Allowed);
+    std::printf("budget check: this scene's errors scaled by %.2f, its times by %.2f\n",
+      o.Features.ErrorScale, o.Features.TimeScale);
+    if (again.Candidate == o.Chosen.Candidate)
+    {
+      std::printf("budget check: the choice stands (%s)\n", again.Settings.Describe().c_str());
+      o.Chosen = again;
+      break;
+    }
+    first = { proxies, receiversIn, shaded, receivers, settings, effective, t1, t2, o.Chosen,
+      estimated };
+    o.Chosen = again;
+    UseKnobs(again.Settings, o);
+    std::printf("budget check: chose again -> %s, predicted %.1f%% in %.3f s; %s\n",
+      again.Settings.Describe().c_str(), 100.0 * again.PredictedError, again.PredictedSeconds,
+      again.Reason.c_str());
   }
-  auto t2 = Clock::now();
   double exposure = o.Exposure;
   if (!(exposure > 0.0) && o.Vertex())
   {
@@ -716,9 +960,14 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   }
   else
   {
-    std::printf("time: proxies %.2f s%s, SH shading %.3f s (%.0f ns per receiver), render %.3f s\n",
+    std::printf("time: proxies %.2f s%s, SH shading %.3f s (%.0f ns per receiver), render %.3f s"
+                "%s\n",
       proxies.Seconds, proxies.Cached ? " (cached)" : "", Seconds(t1, t2),
-      1e9 * Seconds(t1, t2) / std::max<vtkIdType>(1, receivers), Seconds(t2, t3));
+      1e9 * Seconds(t1, t2) / std::max<vtkIdType>(1, receivers), Seconds(t2, t3),
+      occluderSeconds > 0.0 ? (", the meshes' Embree scene for the bright lights' rays " +
+                                std::to_string(occluderSeconds).substr(0, 5) + " s")
+                                .c_str()
+                            : "");
   }
 
   // Error against the Embree reference (per vertex, cached).
@@ -786,6 +1035,17 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     std::printf("total with one-bounce indirect %.2f%% (relative RMSE per vertex over all "
                 "objects)\n",
       100 * RelativeRMSE(shaded, "Radiance", reference, "Radiance"));
+    if (o.Budgeted())
+    {
+      const double measured = RelativeRMSE(shaded, "Radiance", reference, "Radiance");
+      std::printf("budget: predicted %.2f%% in %.3f s, measured %.2f%% in %.3f s: %s\n",
+        100.0 * o.Chosen.PredictedError, o.Chosen.PredictedSeconds, 100.0 * measured,
+        Seconds(t1, t2),
+        (o.Budget.HasError && measured > o.Budget.Error) ||
+            (o.Budget.HasTime && Seconds(t1, t2) > o.Budget.Seconds)
+          ? "the budget was not met"
+          : "within the budget");
+    }
   }
   std::printf("wrote %s (exposure %.3g)\n", o.Output.c_str(), exposure);
   return 0;

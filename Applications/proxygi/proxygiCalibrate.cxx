@@ -1,0 +1,320 @@
+// proxygi calibrate: the accuracy budget's model measured on this machine.
+// Every candidate of the knob grid shades every scene given; its time (one
+// filter update over all receivers, best of --repeats) and its error against
+// the cached Embree reference are the measurements the model is fitted on.
+#include "proxygiCommands.h"
+#include "proxygiProgress.h"
+
+#include "pgiAccuracyBudget.h"
+#include "pgiScene.h"
+#include "pgiSceneSetup.h"
+#include "vtkPGIGISettings.h"
+#include "vtkPGIGlobalIllumination.h"
+#include "vtkPGILighting.h"
+#include "vtkPGIOccluder.h"
+
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkSMPTools.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <sys/utsname.h>
+
+namespace proxygi
+{
+namespace cli
+{
+namespace
+{
+const char* Usage = R"(usage: proxygi calibrate [scene.json ...] [options]
+
+Measures the accuracy budget's candidates (SH order 3, 4, 6, 8; 16 or 64
+spheres; traced self-visibility or the self-shadow rules; shadowed or
+unshadowed bounce) on each scene ('default' or none: the built-in bunny
+scene) against the Embree reference, fits the cost and error model and
+writes it. Give the file to 'proxygi render --budget-model FILE' or to the
+filter's SetBudgetModelFileName; without one they use the model that ships.
+The times are this machine's, with all its threads.
+
+  -o FILE             the model (default proxygi-budget-model.txt)
+  --measurements CSV  also write every run (scene, features, knobs, time, error)
+  --fit CSV[,CSV...]  no measuring: fit the model from measurements written
+                      before (the times stay those of the machine that ran them)
+  --embree CSV        also time Embree at 16, 64 and 256 samples per vertex
+                      against the reference (the curve a budget is compared to)
+  --cache DIR         proxies, self-visibility and references (proxygi-cache)
+  --reference-spp N   samples per vertex of the reference (default 1024)
+  --repeats N         runs per candidate, the fastest kept (default 2)
+  --quick             orders 4 and 6 only, one repeat (a smoke run)
+)";
+
+using Clock = std::chrono::steady_clock;
+// Samples per vertex of the Embree run a budget's check compares with.
+constexpr int CheckSpp = 16;
+
+std::string MachineName()
+{
+  struct utsname u;
+  std::string cpu;
+  std::ifstream info("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(info, line))
+  {
+    if (line.rfind("model name", 0) == 0)
+    {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  std::ostringstream s;
+  s << (cpu.empty() ? std::string(uname(&u) == 0 ? u.machine : "unknown") : cpu) << ", "
+    << vtkSMPTools::GetEstimatedNumberOfThreads() << " threads";
+  return s.str();
+}
+
+bool SplitList(const std::string& text, std::vector<std::string>& out)
+{
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ','))
+  {
+    if (!item.empty())
+    {
+      out.push_back(item);
+    }
+  }
+  return !out.empty();
+}
+} // namespace
+
+/// The features of a loaded scene with `proxies` (receivers are every
+/// object's points; objects the meshes).
+budget::SceneFeatures DescribeForBudget(const SceneDescription& scene, const LoadedScene& loaded,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, const SceneProxies& proxies)
+{
+  budget::SceneFeatures f;
+  for (const auto& r : receivers)
+  {
+    f.Receivers += static_cast<double>(r->GetNumberOfPoints());
+  }
+  f.Spheres = static_cast<double>(proxies.Leaves);
+  double meshes = 0.0;
+  for (const SceneObject& o : scene.Objects)
+  {
+    meshes += o.Type == SceneObject::Kind::Mesh ? 1.0 : 0.0;
+  }
+  f.Objects = std::max(1.0, meshes);
+  std::string error;
+  f.SetLight(loaded.Lighting, error);
+  return f;
+}
+
+int RunCalibrate(const Args& args)
+{
+  if (Flag(args, "--help"))
+  {
+    std::fputs(Usage, stdout);
+    return 0;
+  }
+  bool ok = true;
+  const std::string output = Option(args, "-o", "proxygi-budget-model.txt");
+  const std::string measurementsPath = Option(args, "--measurements", "");
+  const std::string fitFrom = Option(args, "--fit", "");
+  const std::string embreePath = Option(args, "--embree", "");
+  const std::string cache = Option(args, "--cache", "proxygi-cache");
+  const int spp = static_cast<int>(NumberOption(args, "--reference-spp", 1024, ok));
+  const bool quick = Flag(args, "--quick");
+  const int repeats = static_cast<int>(NumberOption(args, "--repeats", quick ? 1 : 2, ok));
+  if (!ok || spp < 16 || repeats < 1)
+  {
+    vtkLogF(ERROR, "proxygi calibrate: need --reference-spp >= 16, --repeats >= 1");
+    return 2;
+  }
+  std::vector<budget::Measurement> rows;
+  std::string error;
+  if (!fitFrom.empty())
+  {
+    std::vector<std::string> files;
+    SplitList(fitFrom, files);
+    for (const std::string& file : files)
+    {
+      std::ifstream in(file);
+      std::stringstream text;
+      text << in.rdbuf();
+      std::vector<budget::Measurement> some;
+      if (!in || !budget::ReadMeasurements(text.str(), some, error))
+      {
+        vtkLogF(
+          ERROR, "proxygi calibrate: %s: %s", file.c_str(), in ? error.c_str() : "cannot read");
+        return 1;
+      }
+      rows.insert(rows.end(), some.begin(), some.end());
+    }
+  }
+  else
+  {
+    // Scenes: every positional argument (the default scene when none).
+    std::vector<std::string> scenes;
+    for (std::size_t i = 0; i < args.size(); ++i)
+    {
+      const std::string& a = args[i];
+      if (a.rfind('-', 0) == 0)
+      {
+        i += (a == "--quick") ? 0 : 1;
+        continue;
+      }
+      scenes.push_back(a);
+    }
+    if (scenes.empty())
+    {
+      scenes.push_back(std::string());
+    }
+    std::vector<budget::Knobs> grid = budget::DefaultGrid();
+    if (quick)
+    {
+      grid.erase(std::remove_if(grid.begin(), grid.end(),
+                   [](const budget::Knobs& k) { return k.Order != 4 && k.Order != 6; }),
+        grid.end());
+    }
+    std::ofstream embree;
+    if (!embreePath.empty())
+    {
+      embree.open(embreePath);
+      embree << "scene,spp,seconds,error\n";
+    }
+    SetupProgress progress("proxygi calibrate");
+    for (const std::string& file : scenes)
+    {
+      SceneDescription scene = DefaultScene();
+      LoadedScene loaded;
+      const bool builtIn = file.empty() || file == "default";
+      if ((!builtIn && !LoadScene(file, scene, error)) || !BuildScene(scene, loaded, error))
+      {
+        vtkLogF(ERROR, "proxygi calibrate: %s: %s", file.c_str(), error.c_str());
+        return 1;
+      }
+      std::printf("scene: %s\n", scene.Name.c_str());
+      std::map<int, SceneProxies> proxies;
+      std::map<int, std::vector<vtkSmartPointer<vtkPolyData>>> traced;
+      const auto plain = SceneReceivers(loaded);
+      for (const budget::Knobs& k : grid)
+      {
+        if (!proxies.count(k.Spheres) &&
+          !BuildSceneProxies(scene, loaded, k.Spheres, cache, proxies[k.Spheres], error, &progress,
+            ProxyFit::Occlusion))
+        {
+          vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
+          return progress.Interrupted() ? InterruptedExitCode : 1;
+        }
+        double seconds = 0.0;
+        if (k.SelfVisibility > 0 && !traced.count(k.Order))
+        {
+          traced[k.Order] = SceneReceivers(loaded);
+          if (!AddSelfVisibility(scene, traced[k.Order], k.Order, k.SelfVisibility, cache, seconds,
+                error, &progress))
+          {
+            vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
+            return progress.Interrupted() ? InterruptedExitCode : 1;
+          }
+        }
+      }
+      double tracing = 0.0;
+      const auto truth = SceneReference(
+        scene, loaded, plain, spp, cache, nullptr, tracing, error, 1, true, &progress);
+      if (truth.empty())
+      {
+        vtkLogF(ERROR, "proxygi calibrate: reference: %s", error.c_str());
+        return progress.Interrupted() ? InterruptedExitCode : 1;
+      }
+      // What a budget's check would see: Embree at 16 samples, other seed.
+      double cheapSeconds = 0.0;
+      const auto cheap = SceneReference(
+        scene, loaded, plain, CheckSpp, std::string(), nullptr, cheapSeconds, error, 7);
+      vtkSmartPointer<vtkPGIOccluder> occluder = SceneOccluder(plain);
+      for (const budget::Knobs& k : grid)
+      {
+        const auto& receivers = k.SelfVisibility > 0 ? traced[k.Order] : plain;
+        double best = 1e300, err = 0.0, checkErr = -1.0;
+        for (int r = 0; r < repeats; ++r)
+        {
+          // A fresh filter: the time of a frame that changes the settings.
+          vtkNew<vtkPGIGISettings> settings;
+          ConfigureSettings(settings, scene);
+          k.Apply(settings);
+          vtkNew<vtkPGIGlobalIllumination> gi;
+          ConfigureGlobalIllumination(gi, scene, loaded, proxies[k.Spheres]);
+          gi->SetSettings(settings);
+          gi->SetOccluder(occluder);
+          const auto t0 = Clock::now();
+          const auto shaded = ShadeEach(gi, receivers);
+          best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+          err = RelativeRMSE(shaded, "Radiance", truth, "Radiance");
+          checkErr = cheap.empty() ? -1.0 : EstimatedRelativeRMSE(shaded, cheap, CheckSpp, spp);
+        }
+        budget::Measurement m;
+        m.Scene = scene.Name;
+        m.Features = DescribeForBudget(scene, loaded, plain, proxies[k.Spheres]);
+        m.Settings = k;
+        m.Seconds = best;
+        m.Error = err;
+        m.CheckError = checkErr;
+        rows.push_back(m);
+        std::printf("  %-70s %7.3f s %6.2f%% (check %.2f%%)\n", k.Describe().c_str(), best,
+          100.0 * err, 100.0 * checkErr);
+      }
+      if (embree.is_open())
+      {
+        for (int s : { 16, 64, 256 })
+        {
+          double seconds = 0.0;
+          const auto r =
+            SceneReference(scene, loaded, plain, s, std::string(), nullptr, seconds, error, 7);
+          const double e = RelativeRMSE(r, "Radiance", truth, "Radiance");
+          std::string name = scene.Name;
+          std::replace(name.begin(), name.end(), ',', ';');
+          embree << name << "," << s << "," << seconds << "," << e << "\n";
+          std::printf("  %-70s %7.3f s %6.2f%%\n", ("Embree " + std::to_string(s) + " spp").c_str(),
+            seconds, 100.0 * e);
+        }
+      }
+    }
+    if (!measurementsPath.empty())
+    {
+      std::ofstream out(measurementsPath);
+      out << budget::WriteMeasurements(rows);
+      if (!out)
+      {
+        vtkLogF(ERROR, "proxygi calibrate: cannot write %s", measurementsPath.c_str());
+        return 1;
+      }
+      std::printf("wrote %s (%zu runs)\n", measurementsPath.c_str(), rows.size());
+    }
+  }
+  budget::Model model;
+  if (!model.Fit(rows, error))
+  {
+    vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
+    return 1;
+  }
+  model.Machine = MachineName();
+  if (!model.Save(output, error))
+  {
+    vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
+    return 1;
+  }
+  std::printf("model: %zu candidates, %d scenes, error spread x%.2f (log RMS %.3f), on %s\n",
+    model.Candidates.size(), model.Scenes, std::exp(model.ErrorSpread), model.ErrorSpread,
+    model.Machine.c_str());
+  std::printf("wrote %s\n", output.c_str());
+  return 0;
+}
+
+} // namespace cli
+} // namespace proxygi
