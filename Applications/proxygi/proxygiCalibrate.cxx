@@ -94,26 +94,21 @@ bool SplitList(const std::string& text, std::vector<std::string>& out)
 }
 } // namespace
 
-/// The features of a loaded scene with `proxies` (receivers are every
-/// object's points; objects the meshes).
-budget::SceneFeatures DescribeForBudget(const SceneDescription& scene, const LoadedScene& loaded,
-  const std::vector<vtkSmartPointer<vtkPolyData>>& receivers, const SceneProxies& proxies)
+bool SceneBudgetFeatures(const SceneDescription& scene, const LoadedScene& loaded,
+  budget::SceneFeatures& features, std::string& error)
 {
-  budget::SceneFeatures f;
-  for (const auto& r : receivers)
+  features = budget::SceneFeatures();
+  for (const auto& r : SceneReceivers(loaded))
   {
-    f.Receivers += static_cast<double>(r->GetNumberOfPoints());
+    features.Receivers += static_cast<double>(r->GetNumberOfPoints());
   }
-  f.Spheres = static_cast<double>(proxies.Leaves);
   double meshes = 0.0;
   for (const SceneObject& o : scene.Objects)
   {
     meshes += o.Type == SceneObject::Kind::Mesh ? 1.0 : 0.0;
   }
-  f.Objects = std::max(1.0, meshes);
-  std::string error;
-  f.SetLight(loaded.Lighting, error);
-  return f;
+  features.Objects = std::max(1.0, meshes);
+  return features.SetLight(loaded.Lighting, error);
 }
 
 int RunCalibrate(const Args& args)
@@ -238,6 +233,12 @@ int RunCalibrate(const Args& args)
       const auto cheap = SceneReference(
         scene, loaded, plain, CheckSpp, std::string(), nullptr, cheapSeconds, error, 7);
       vtkSmartPointer<vtkPGIOccluder> occluder = SceneOccluder(plain);
+      budget::SceneFeatures features;
+      if (!SceneBudgetFeatures(scene, loaded, features, error))
+      {
+        vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
+        return 1;
+      }
       for (const budget::Knobs& k : grid)
       {
         const auto& receivers = k.SelfVisibility > 0 ? traced[k.Order] : plain;
@@ -260,7 +261,8 @@ int RunCalibrate(const Args& args)
         }
         budget::Measurement m;
         m.Scene = scene.Name;
-        m.Features = DescribeForBudget(scene, loaded, plain, proxies[k.Spheres]);
+        m.Features = features;
+        m.Features.Spheres = static_cast<double>(proxies[k.Spheres].Leaves);
         m.Settings = k;
         m.Seconds = best;
         m.Error = err;

@@ -7,6 +7,12 @@
 
 namespace proxygi
 {
+struct LoadedScene;
+struct SceneDescription;
+namespace budget
+{
+struct SceneFeatures;
+}
 namespace cli
 {
 using Args = std::vector<std::string>;
@@ -27,6 +33,10 @@ int RunView(const Args& args);
 int RunCloud(const Args& args);
 /// The accuracy budget's model measured and fitted on this machine.
 int RunCalibrate(const Args& args);
+/// What the budget model predicts from, for a loaded scene (render and
+/// calibrate): every object's points, the meshes, the light's terms.
+bool SceneBudgetFeatures(const SceneDescription& scene, const LoadedScene& loaded,
+  budget::SceneFeatures& features, std::string& error);
 
 /// Value of the last "--name value" (or default); sets `ok` false on a bad number.
 std::string Option(const Args& args, const std::string& name, const std::string& fallback);

@@ -317,17 +317,7 @@ bool ChooseForBudget(
     return false;
   }
   budget::SceneFeatures& features = o.Features;
-  for (const auto& r : SceneReceivers(loaded))
-  {
-    features.Receivers += static_cast<double>(r->GetNumberOfPoints());
-  }
-  features.Objects = 0.0;
-  for (const SceneObject& object : scene.Objects)
-  {
-    features.Objects += object.Type == SceneObject::Kind::Mesh ? 1.0 : 0.0;
-  }
-  features.Objects = std::max(1.0, features.Objects);
-  if (!features.SetLight(loaded.Lighting, error))
+  if (!SceneBudgetFeatures(scene, loaded, features, error))
   {
     vtkLogF(ERROR, "proxygi render: %s", error.c_str());
     return false;

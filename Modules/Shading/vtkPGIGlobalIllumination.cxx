@@ -27,6 +27,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
@@ -432,12 +433,17 @@ struct vtkPGIGlobalIllumination::Clusters
   ClusterKey Key;
 };
 
-// The budget model, read once per file name.
+// The budget model, read once per file name, and the light's terms of the
+// features, computed once per light.
 struct vtkPGIGlobalIllumination::BudgetState
 {
   std::string FileName;
   proxygi::budget::Model Model;
   bool Loaded = false;
+  proxygi::budget::SceneFeatures LightFeatures;
+  const vtkPGILighting* Light = nullptr;
+  vtkMTimeType LightTime = 0;
+  bool LightKnown = false;
 };
 
 vtkPGIGlobalIllumination::vtkPGIGlobalIllumination()
@@ -635,7 +641,6 @@ std::string vtkPGIGlobalIllumination::CheckReceivers(vtkPolyData* receivers)
 std::string vtkPGIGlobalIllumination::ApplyBudget(vtkPolyData* proxies, vtkPolyData* receivers)
 {
   namespace budget = proxygi::budget;
-  std::vector<std::string> lines;
   const std::string name = this->BudgetModelFileName ? this->BudgetModelFileName : "";
   BudgetState& state = *this->Budget;
   if (!state.Loaded || state.FileName != name)
@@ -669,11 +674,29 @@ std::string vtkPGIGlobalIllumination::ApplyBudget(vtkPolyData* proxies, vtkPolyD
   }
   features.Objects = std::max<double>(1.0, static_cast<double>(objects.size()));
   features.Spheres = leaves;
-  std::string error;
-  if (!features.SetLight(this->Lighting, error))
+  // The light's terms (a bright-light search and a projection of the map)
+  // only when the light changed: an update that moves proxies redoes
+  // neither.
+  vtkImageData* image = this->Lighting ? this->Lighting->GetEnvironmentImage() : nullptr;
+  const vtkMTimeType lightTime = !this->Lighting
+    ? 0
+    : std::max(this->Lighting->GetMTime(), image ? image->GetMTime() : vtkMTimeType(0));
+  if (!state.LightKnown || state.Light != this->Lighting || state.LightTime != lightTime)
   {
-    return "Budget: " + error + ".";
+    std::string error;
+    if (!state.LightFeatures.SetLight(this->Lighting, error))
+    {
+      state.LightKnown = false;
+      return "Budget: " + error + ".";
+    }
+    state.Light = this->Lighting;
+    state.LightTime = lightTime;
+    state.LightKnown = true;
   }
+  features.PeakFraction = state.LightFeatures.PeakFraction;
+  features.Directionality = state.LightFeatures.Directionality;
+  features.BrightLights = state.LightFeatures.BrightLights;
+  features.Map = state.LightFeatures.Map;
   const double perObject = leaves / features.Objects;
   const bool traced = this->Effective->GetSelfVisibility() && receivers &&
     receivers->GetPointData()->GetArray("SelfLogVisibility");
@@ -714,16 +737,8 @@ std::string vtkPGIGlobalIllumination::ApplyBudget(vtkPolyData* proxies, vtkPolyD
   {
     vtkWarningMacro(<< "Budget: " << choice.Reason << ".");
   }
-  const int order = std::min(choice.Settings.Order, GetSupport().MaxOrder);
-  this->Effective->SetOrder(order);
-  this->Effective->SetIndirectOrder(choice.Settings.IndirectOrder);
-  if (this->Effective->GetIndirect())
-  {
-    this->Effective->SetIndirectMode(choice.Settings.ShadowedIndirect
-        ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
-        : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
-  }
-  this->Effective->SetHierarchyAngle(choice.Settings.HierarchyAngle);
+  // Orders 2..8 (Model::Read checks), all within this filter's support.
+  choice.Settings.Apply(this->Effective);
   std::ostringstream line;
   line.precision(3);
   line << "budget: " << choice.Settings.Describe() << " (the proxies' " << perObject
