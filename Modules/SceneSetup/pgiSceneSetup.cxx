@@ -588,11 +588,16 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReference(const SceneDescription&
   return result;
 }
 
-double RelativeRMSE(const std::vector<vtkSmartPointer<vtkPolyData>>& a, const char* arrayA,
-  const std::vector<vtkSmartPointer<vtkPolyData>>& b, const char* arrayB,
-  const std::vector<std::size_t>& objects)
+namespace
 {
-  double sq = 0.0, ref = 0.0;
+// Over the given objects (all when empty) and RGB components: the sums of
+// |a - b|^2, of |b|^2 and, with `noiseB`, of b's standard error squared.
+// False when an array is missing or the point counts differ.
+bool DifferenceSums(const std::vector<vtkSmartPointer<vtkPolyData>>& a, const char* arrayA,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& b, const char* arrayB, const char* noiseB,
+  const std::vector<std::size_t>& objects, double& sq, double& ref, double& noise)
+{
+  sq = ref = noise = 0.0;
   for (std::size_t k = 0; k < a.size() && k < b.size(); ++k)
   {
     if (!objects.empty() && std::find(objects.begin(), objects.end(), k) == objects.end())
@@ -601,9 +606,10 @@ double RelativeRMSE(const std::vector<vtkSmartPointer<vtkPolyData>>& a, const ch
     }
     vtkDataArray* x = a[k]->GetPointData()->GetArray(arrayA);
     vtkDataArray* y = b[k]->GetPointData()->GetArray(arrayB);
-    if (!x || !y || x->GetNumberOfTuples() != y->GetNumberOfTuples())
+    vtkDataArray* s = noiseB ? b[k]->GetPointData()->GetArray(noiseB) : nullptr;
+    if (!x || !y || (noiseB && !s) || x->GetNumberOfTuples() != y->GetNumberOfTuples())
     {
-      return std::nan("");
+      return false;
     }
     for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
     {
@@ -612,8 +618,22 @@ double RelativeRMSE(const std::vector<vtkSmartPointer<vtkPolyData>>& a, const ch
         const double d = x->GetComponent(i, c) - y->GetComponent(i, c);
         sq += d * d;
         ref += y->GetComponent(i, c) * y->GetComponent(i, c);
+        noise += s ? s->GetComponent(i, c) * s->GetComponent(i, c) : 0.0;
       }
     }
+  }
+  return true;
+}
+} // namespace
+
+double RelativeRMSE(const std::vector<vtkSmartPointer<vtkPolyData>>& a, const char* arrayA,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& b, const char* arrayB,
+  const std::vector<std::size_t>& objects)
+{
+  double sq = 0.0, ref = 0.0, noise = 0.0;
+  if (!DifferenceSums(a, arrayA, b, arrayB, nullptr, objects, sq, ref, noise))
+  {
+    return std::nan("");
   }
   return ref > 0.0 ? std::sqrt(sq / ref) : 0.0;
 }
@@ -654,25 +674,9 @@ double EstimatedRelativeRMSE(const std::vector<vtkSmartPointer<vtkPolyData>>& a,
   // s^2 cheapSpp / targetSpp of that noise.
   const double removed = 1.0 - std::min(1.0, static_cast<double>(cheapSpp) / targetSpp);
   double sq = 0.0, ref = 0.0, noise = 0.0;
-  for (std::size_t k = 0; k < a.size() && k < cheap.size(); ++k)
+  if (!DifferenceSums(a, "Radiance", cheap, "Radiance", "RadianceStdErr", {}, sq, ref, noise))
   {
-    vtkDataArray* x = a[k]->GetPointData()->GetArray("Radiance");
-    vtkDataArray* y = cheap[k]->GetPointData()->GetArray("Radiance");
-    vtkDataArray* s = cheap[k]->GetPointData()->GetArray("RadianceStdErr");
-    if (!x || !y || !s || x->GetNumberOfTuples() != y->GetNumberOfTuples())
-    {
-      return std::nan("");
-    }
-    for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        const double d = x->GetComponent(i, c) - y->GetComponent(i, c);
-        sq += d * d;
-        ref += y->GetComponent(i, c) * y->GetComponent(i, c);
-        noise += s->GetComponent(i, c) * s->GetComponent(i, c);
-      }
-    }
+    return std::nan("");
   }
   const double signal = ref - removed * noise;
   return signal > 0.0 ? std::sqrt(std::max(0.0, sq - removed * noise) / signal) : 0.0;
