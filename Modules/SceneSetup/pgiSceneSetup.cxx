@@ -164,6 +164,7 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(const LoadedScene& load
   std::vector<vtkSmartPointer<vtkPolyData>> receivers;
   for (const auto& object : loaded.Objects)
   {
+    const int index = static_cast<int>(receivers.size());
     vtkNew<vtkPolyDataNormals> normals;
     normals->SetInputData(object);
     normals->SplittingOff();
@@ -172,6 +173,13 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(const LoadedScene& load
     normals->Update();
     auto copy = vtkSmartPointer<vtkPolyData>::New();
     copy->DeepCopy(normals->GetOutput());
+    // The object each receiver is on, as the proxies' ObjectId names it: a
+    // plane's receivers own no spheres (no self-shadow rules for them).
+    vtkNew<vtkIntArray> ids;
+    ids->SetName("ObjectId");
+    ids->SetNumberOfTuples(copy->GetNumberOfPoints());
+    ids->FillValue(index);
+    copy->GetPointData()->AddArray(ids);
     receivers.push_back(copy);
   }
   return receivers;

@@ -82,7 +82,8 @@ PROXYGISCENESETUP_EXPORT bool BuildSceneProxies(const SceneDescription& scene,
 /// one string for cache keys.
 PROXYGISCENESETUP_EXPORT std::string DescribeScene(const SceneDescription& scene);
 
-/// The receivers of a scene: every object with point normals (unsplit).
+/// The receivers of a scene: every object with point normals (unsplit) and
+/// an "ObjectId" point array (its index, as the proxies' ObjectId names it).
 PROXYGISCENESETUP_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(
   const LoadedScene& loaded);
 

@@ -365,8 +365,11 @@ void FillPlaneLightMap(PlaneLightMap& map, int plane, const BakedScene& b,
         map.Point(static_cast<int>(first) + j, &buffers.Points[3 * j]);
         std::copy_n(m, 3, &buffers.Normals[3 * j]);
       }
+      // Every sphere is another object's: the plane's contact shadows stay dark.
+      SelfVisibility plane;
+      plane.OwnsNoSpheres = true;
       how.Shadows->VisibilityBatch(count, buffers.Points.data(), buffers.Normals.data(), blockers,
-        buffers.Visibilities.data(), buffers.Statuses.data(), buffers.Used.data());
+        buffers.Visibilities.data(), buffers.Statuses.data(), buffers.Used.data(), nullptr, plane);
       for (int j = 0; j < count; ++j)
       {
         float* scale = &scales[3 * (first + j)];

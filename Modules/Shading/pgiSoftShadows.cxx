@@ -105,12 +105,19 @@ SoftShadows::SoftShadows(const SoftShadowSettings& settings)
 
 namespace
 {
+// The self-shadow rules run only where the receiver's own proxies may be
+// among the spheres (its object unknown); see the file comment.
+bool RulesApply(const SoftShadowSettings& settings, const SelfVisibility& self)
+{
+  return settings.SelfShadowRules && self.Object < 0 && !self.OwnsNoSpheres;
+}
+
 // Calls visit(index, theta, dx, dy, dz, ratio) for every blocker receiver
 // (p, n) accumulates, in accumulation order: spheres after the rules, then
 // planes (index -1 - k; in log space only when inLog, else reported only
 // with ratio null and theta MaxAngle). The batched twin is BlockerLanesImpl.
 template <typename Visit>
-void VisitBlockers(const SoftShadowSettings& settings, bool ratios, const float p[3],
+void VisitBlockers(const SoftShadowSettings& settings, bool rules, bool ratios, const float p[3],
   const float n[3], const Blockers& b, Visit&& visit)
 {
   const float sinMin = std::sin(settings.MinAngle);
@@ -122,7 +129,7 @@ void VisitBlockers(const SoftShadowSettings& settings, bool ratios, const float 
     {
       continue; // zero-radius (or NaN) spheres block nothing
     }
-    if (settings.SelfShadowRules && !ReplaceBlocker(p, n, c, r))
+    if (rules && !ReplaceBlocker(p, n, c, r))
     {
       continue;
     }
@@ -190,7 +197,8 @@ int SoftShadows::Visibility(const float p[3], const float n[3], const Blockers& 
     ++used;
   }
   const bool skipOwn = self.Object >= 0 && b.Object.size() == b.X.size();
-  VisitBlockers(this->Settings, !b.Ratio.empty() && acc == order, p, n, b,
+  VisitBlockers(this->Settings, RulesApply(this->Settings, self), !b.Ratio.empty() && acc == order,
+    p, n, b,
     [&](int index, float theta, float dx, float dy, float dz, const float* ratio, bool inLog)
     {
       if (inLog && !(skipOwn && index >= 0 && b.Object[index] == self.Object))
@@ -251,6 +259,7 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
   const float sinMin = std::sin(this->Settings.MinAngle);
   const int spheres = static_cast<int>(b.Spheres()), planes = static_cast<int>(b.Planes());
   const bool skipOwn = self.Object >= 0 && b.Object.size() == b.X.size();
+  const bool rules = RulesApply(this->Settings, self);
   alignas(64) float lanes[6 * W], theta[Rows * W], dx[Rows * W], dy[Rows * W], dz[Rows * W];
   alignas(64) float f[sh::MaxCoefficients * W], e[sh::MaxCoefficients * W];
   int laneUsed[W];
@@ -315,8 +324,8 @@ void SoftShadows::VisibilityBatch(int count, const float* p, const float* n, con
     for (int s0 = 0; s0 < spheres; s0 += Rows)
     {
       const int rows = std::min(Rows, spheres - s0);
-      detail::BlockerLanes(lanes, &b.X[s0], &b.Y[s0], &b.Z[s0], &b.R[s0], rows, sinMin,
-        this->Settings.SelfShadowRules, theta, dx, dy, dz);
+      detail::BlockerLanes(
+        lanes, &b.X[s0], &b.Y[s0], &b.Z[s0], &b.R[s0], rows, sinMin, rules, theta, dx, dy, dz);
       list(first, m, rows, s0, 1);
       // The own object's spheres: listed, not accumulated.
       for (int r = 0; skipOwn && r < rows; ++r)

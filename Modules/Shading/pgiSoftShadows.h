@@ -16,6 +16,12 @@
  *    inside by min(1, (delta - rho) / (delta/2)), outside by
  *    min(1, (rho - delta) / delta) (the paper's continuity scaling), so both
  *    vanish where the receiver leaves the sphere and nothing jumps.
+ * The rules stand for the receiver's own surface cutting its own proxies. A
+ * receiver whose own object is known (SelfVisibility::Object: its own
+ * spheres are left out) or that belongs to no sphere's object
+ * (SelfVisibility::OwnsNoSpheres: a plane) sees every sphere it sums as
+ * another object's, whole: where another object touches it the shadow is
+ * dark, as the mesh's is, where the ramp would fade the sphere to nothing.
  * Blockers that subtend less than MinAngle are skipped (they would add
  * nothing the exp could resolve). A plane blocks the half-space beneath it
  * for every receiver above it (a 90-degree cap); receivers on it are not
@@ -131,6 +137,8 @@ struct SelfVisibility
 {
   int Object = -1;
   const float* Log = nullptr;
+  /// The receiver is on no sphere's object (a plane): no rules either.
+  bool OwnsNoSpheres = false;
 };
 
 class PROXYGISHADING_EXPORT SoftShadows

@@ -191,6 +191,21 @@ struct SelfVisibilityInput
     const double id = this->Objects->GetTuple1(i);
     return id >= 0.0 && id < (1 << 24) ? static_cast<int>(id) : -1;
   }
+  // Without traced arrays: the receivers' ObjectId, and the proxies' objects.
+  vtkDataArray* Ids = nullptr;
+  std::vector<int> ProxyObjects; // sorted
+  // A receiver whose object has no proxies: no self-shadow rules for it.
+  bool OwnsNoSpheres(vtkIdType i) const
+  {
+    if (this->Logs || !this->Ids)
+    {
+      return false;
+    }
+    const double id = this->Ids->GetTuple1(i);
+    return id >= 0.0 && id < (1 << 24) &&
+      !std::binary_search(
+        this->ProxyObjects.begin(), this->ProxyObjects.end(), static_cast<int>(id));
+  }
 };
 
 // The bounce arrays (field data), checked once: every target a receiver.
@@ -1098,9 +1113,22 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   logSettings.PlanesInLogSpace = true;
   const proxygi::SoftShadows shadowsLog(logSettings);
   const int a2 = shadows.GetAccumulationOrder() * shadows.GetAccumulationOrder();
-  const SelfVisibilityInput self = needVisibility
+  SelfVisibilityInput self = needVisibility
     ? FindSelfVisibility(receivers, settings->GetSelfVisibility(), shadows.GetAccumulationOrder())
     : SelfVisibilityInput();
+  // Without traced arrays, receivers that name an object with no proxies
+  // (a ground plane) own no spheres: the rules do not run for them. In the
+  // batch keys their object slot holds noSpheres (own objects: id + 1).
+  constexpr long long noSpheres = (1LL << 24) + 1;
+  const std::vector<int>& sphereObjects = b.SceneBlockers.Object;
+  if (!self.Logs && sphereObjects.size() == b.SceneBlockers.Spheres())
+  {
+    self.Ids = receivers->GetPointData()->GetArray("ObjectId");
+    self.ProxyObjects = sphereObjects;
+    std::sort(self.ProxyObjects.begin(), self.ProxyObjects.end());
+    self.ProxyObjects.erase(
+      std::unique(self.ProxyObjects.begin(), self.ProxyObjects.end()), self.ProxyObjects.end());
+  }
   if (!self.Line.empty())
   {
     this->Plan.push_back(self.Line);
@@ -1229,8 +1257,10 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             facing[3 * j + c] = static_cast<float>(nd[c]);
           }
           const bool carries = planesInLight && blockers.AboveEveryPlane(&points[3 * j]);
-          // Batches share the cluster, the receivers' own object and the kernel.
-          const long long object = self.OwnObject(first + j) + 1;
+          // Batches share the cluster, the receivers' own object (or that
+          // they own no spheres) and the kernel.
+          const long long object =
+            self.OwnsNoSpheres(first + j) ? noSpheres : self.OwnObject(first + j) + 1;
           key[j] = 2 *
               ((cl.Of.empty() ? 0LL : static_cast<long long>(cl.Of[first + j])) * (1LL << 25) +
                 object) +
@@ -1275,7 +1305,11 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
             const proxygi::SoftShadows& kernel = key[byBlockers[start]] % 2 ? shadows : shadowsLog;
             proxygi::SelfVisibility own;
             const long long object = (key[byBlockers[start]] / 2) % (1LL << 25);
-            if (object > 0)
+            if (object == noSpheres)
+            {
+              own.OwnsNoSpheres = true;
+            }
+            else if (object > 0)
             {
               own.Object = static_cast<int>(object - 1);
               own.Log = &batchSelfLogs[a2 * start];

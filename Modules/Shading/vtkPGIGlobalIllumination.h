@@ -52,7 +52,12 @@
  * nor light them (they still dim the planes' light by their overlap). Where
  * the points are no longer where they were traced (moved or deformed), the
  * order differs, an array is missing or SelfVisibility is off, the
- * self-shadow rules run, and the plan says why.
+ * self-shadow rules run, and the plan says why. The rules stand for a
+ * receiver's own surface cutting its own proxies: receivers with their own
+ * visibility traced, and receivers whose "ObjectId" point array (without
+ * the traced arrays) names no proxy's object, such as a ground plane, see
+ * every sphere whole, so that where an object stands on them its contact
+ * shadow stays dark.
  *
  * Bright lights (settings BrightLights, on by default): where the
  * environment has compact peaks holding enough of its power (a sun, lamps:
