@@ -98,9 +98,10 @@ bool SceneBudgetFeatures(const SceneDescription& scene, const LoadedScene& loade
   budget::SceneFeatures& features, std::string& error)
 {
   features = budget::SceneFeatures();
-  for (const auto& r : SceneReceivers(loaded))
+  // The receivers are the objects' points (SceneReceivers adds arrays only).
+  for (const auto& object : loaded.Objects)
   {
-    features.Receivers += static_cast<double>(r->GetNumberOfPoints());
+    features.Receivers += static_cast<double>(object->GetNumberOfPoints());
   }
   double meshes = 0.0;
   for (const SceneObject& o : scene.Objects)

@@ -172,9 +172,9 @@ struct ShadeScratch
 // it still holds; Line says why it runs or not (empty: no such array).
 struct SelfVisibilityInput
 {
-  const float* Logs = nullptr; // rows of accumulation order^2 (may point into Rotated)
-  std::vector<float> Rotated;  // the logs turned with receivers moved rigidly
-  vtkDataArray* Objects = nullptr;
+  const float* Logs = nullptr;     // rows of accumulation order^2 (may point into Rotated)
+  std::vector<float> Rotated;      // the logs turned with receivers moved rigidly
+  vtkDataArray* Objects = nullptr; // the receivers' ObjectId (with or without Logs)
   // The bounce off the object onto itself: receiver i gathers the exit
   // radiance of Targets[Offsets[i] .. Offsets[i + 1]) with their Weights.
   vtkIdTypeArray* Offsets = nullptr;
@@ -191,17 +191,16 @@ struct SelfVisibilityInput
     const double id = this->Objects->GetTuple1(i);
     return id >= 0.0 && id < (1 << 24) ? static_cast<int>(id) : -1;
   }
-  // Without traced arrays: the receivers' ObjectId, and the proxies' objects.
-  vtkDataArray* Ids = nullptr;
-  std::vector<int> ProxyObjects; // sorted
+  // Without traced arrays: the objects the proxies stand for, sorted.
+  std::vector<int> ProxyObjects;
   // A receiver whose object has no proxies: no self-shadow rules for it.
   bool OwnsNoSpheres(vtkIdType i) const
   {
-    if (this->Logs || !this->Ids)
+    if (this->Logs || !this->Objects)
     {
       return false;
     }
-    const double id = this->Ids->GetTuple1(i);
+    const double id = this->Objects->GetTuple1(i);
     return id >= 0.0 && id < (1 << 24) &&
       !std::binary_search(
         this->ProxyObjects.begin(), this->ProxyObjects.end(), static_cast<int>(id));
@@ -1121,9 +1120,10 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   // batch keys their object slot holds noSpheres (own objects: id + 1).
   constexpr long long noSpheres = (1LL << 24) + 1;
   const std::vector<int>& sphereObjects = b.SceneBlockers.Object;
-  if (!self.Logs && sphereObjects.size() == b.SceneBlockers.Spheres())
+  vtkDataArray* receiverObjects = receivers->GetPointData()->GetArray("ObjectId");
+  if (!self.Logs && receiverObjects && sphereObjects.size() == b.SceneBlockers.Spheres())
   {
-    self.Ids = receivers->GetPointData()->GetArray("ObjectId");
+    self.Objects = receiverObjects;
     self.ProxyObjects = sphereObjects;
     std::sort(self.ProxyObjects.begin(), self.ProxyObjects.end());
     self.ProxyObjects.erase(
