@@ -4,6 +4,7 @@
 #include <cmath>
 #include <queue>
 #include <string>
+#include <utility>
 
 namespace proxygi
 {
@@ -224,7 +225,7 @@ void ExtractBrightLights(
     }
   }
   std::string error;
-  result.Residual.Set(w, h, rgb.data(), error);
+  result.Residual.Set(w, h, std::move(rgb), error);
   result.Residual.SetRotation(map.GetRotation());
 }
 

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace proxygi
 {
@@ -38,11 +39,27 @@ bool EnvironmentMap::Set(int width, int height, const float* rgb, std::string& e
 {
   if (width < 2 || height < 1 || width != 2 * height)
   {
+    return this->Set(width, height, std::vector<float>(), error);
+  }
+  return this->Set(width, height,
+    std::vector<float>(rgb, rgb + static_cast<std::size_t>(width) * height * 3), error);
+}
+
+bool EnvironmentMap::Set(int width, int height, std::vector<float>&& rgb, std::string& error)
+{
+  if (width < 2 || height < 1 || width != 2 * height)
+  {
     error = "a lat-long environment map must be twice as wide as high (got " +
       std::to_string(width) + " x " + std::to_string(height) + ")";
     return false;
   }
   const std::size_t count = static_cast<std::size_t>(width) * height * 3;
+  if (rgb.size() != count)
+  {
+    error = "environment map rows hold " + std::to_string(rgb.size()) + " values, not " +
+      std::to_string(count);
+    return false;
+  }
   for (std::size_t k = 0; k < count; ++k)
   {
     if (!std::isfinite(rgb[k]) || rgb[k] < 0.0f)
@@ -53,8 +70,8 @@ bool EnvironmentMap::Set(int width, int height, const float* rgb, std::string& e
   }
   this->Width = width;
   this->Height = height;
-  this->RGB.assign(rgb, rgb + count);
-  this->BuildSampler();
+  this->RGB = std::move(rgb);
+  this->Sampling = std::make_shared<SamplerTables>();
   return true;
 }
 
@@ -74,7 +91,7 @@ void EnvironmentMap::SetFromFunction(
     }
   }
   std::string error;
-  this->Set(width, height, rgb.data(), error);
+  this->Set(width, height, std::move(rgb), error);
 }
 
 bool EnvironmentMap::FromImage(vtkImageData* image, EnvironmentMap& map, std::string& error)
@@ -125,7 +142,7 @@ bool EnvironmentMap::FromImage(vtkImageData* image, EnvironmentMap& map, std::st
       }
     }
   }
-  return map.Set(dims[0], dims[1], rgb.data(), error);
+  return map.Set(dims[0], dims[1], std::move(rgb), error);
 }
 
 void EnvironmentMap::ToImage(vtkImageData* image) const
@@ -170,12 +187,19 @@ void EnvironmentMap::ToWorld(const double m[3], double w[3]) const
   w[2] = m[2];
 }
 
-void EnvironmentMap::BuildSampler()
+const EnvironmentMap::SamplerTables& EnvironmentMap::Sampler() const
+{
+  SamplerTables& tables = *this->Sampling;
+  std::call_once(tables.Built, [&]() { this->BuildSampler(tables); });
+  return tables;
+}
+
+void EnvironmentMap::BuildSampler(SamplerTables& tables) const
 {
   const int w = this->Width, h = this->Height;
-  this->TexelWeight.assign(static_cast<std::size_t>(w) * h, 0.0);
-  this->ColumnCdf.assign(static_cast<std::size_t>(w + 1) * h, 0.0);
-  this->RowCdf.assign(h + 1, 0.0);
+  tables.TexelWeight.assign(static_cast<std::size_t>(w) * h, 0.0);
+  tables.ColumnCdf.assign(static_cast<std::size_t>(w + 1) * h, 0.0);
+  tables.RowCdf.assign(h + 1, 0.0);
   double total = 0.0;
   for (int pass = 0; pass < 2 && total <= 0.0; ++pass)
   {
@@ -185,21 +209,21 @@ void EnvironmentMap::BuildSampler()
     {
       const double solid = (2 * Pi / w) * (std::cos(Pi * j / h) - std::cos(Pi * (j + 1) / h));
       double rowSum = 0.0;
-      double* cdf = &this->ColumnCdf[static_cast<std::size_t>(j) * (w + 1)];
+      double* cdf = &tables.ColumnCdf[static_cast<std::size_t>(j) * (w + 1)];
       cdf[0] = 0.0;
       for (int i = 0; i < w; ++i)
       {
         const float* rgb = &this->RGB[3 * (static_cast<std::size_t>(j) * w + i)];
         const double weight = (pass == 0 ? Luminance(rgb) : 1.0) * solid;
-        this->TexelWeight[static_cast<std::size_t>(j) * w + i] = weight;
+        tables.TexelWeight[static_cast<std::size_t>(j) * w + i] = weight;
         rowSum += weight;
         cdf[i + 1] = rowSum;
       }
       total += rowSum;
-      this->RowCdf[j + 1] = total;
+      tables.RowCdf[j + 1] = total;
     }
   }
-  this->TotalWeight = total;
+  tables.TotalWeight = total;
 }
 
 namespace
@@ -222,10 +246,11 @@ int FindBin(const double* cdf, int n, double u, double& fraction)
 
 double EnvironmentMap::Sample(double u1, double u2, double d[3], float rgb[3]) const
 {
+  const SamplerTables& tables = this->Sampler();
   const int w = this->Width, h = this->Height;
   double fj, fi;
-  const int j = FindBin(this->RowCdf.data(), h, u1, fj);
-  const int i = FindBin(&this->ColumnCdf[static_cast<std::size_t>(j) * (w + 1)], w, u2, fi);
+  const int j = FindBin(tables.RowCdf.data(), h, u1, fj);
+  const int i = FindBin(&tables.ColumnCdf[static_cast<std::size_t>(j) * (w + 1)], w, u2, fi);
   // Uniform in solid angle inside the texel: phi and cos(theta) uniform.
   const double z0 = std::cos(Pi * j / h), z1 = std::cos(Pi * (j + 1) / h);
   const double z = z0 + (z1 - z0) * fj;
@@ -238,7 +263,7 @@ double EnvironmentMap::Sample(double u1, double u2, double d[3], float rgb[3]) c
   rgb[1] = texel[1];
   rgb[2] = texel[2];
   const double solid = (2 * Pi / w) * (z0 - z1);
-  return this->TexelWeight[static_cast<std::size_t>(j) * w + i] / this->TotalWeight / solid;
+  return tables.TexelWeight[static_cast<std::size_t>(j) * w + i] / tables.TotalWeight / solid;
 }
 
 namespace
@@ -264,7 +289,8 @@ double EnvironmentMap::Pdf(const double d[3]) const
   TexelOf(m, this->Width, this->Height, i, j);
   const double solid = (2 * Pi / this->Width) *
     (std::cos(Pi * j / this->Height) - std::cos(Pi * (j + 1) / this->Height));
-  return this->TexelWeight[static_cast<std::size_t>(j) * this->Width + i] / this->TotalWeight /
+  const SamplerTables& tables = this->Sampler();
+  return tables.TexelWeight[static_cast<std::size_t>(j) * this->Width + i] / tables.TotalWeight /
     solid;
 }
 

@@ -16,6 +16,8 @@
 
 #include "ProxyGILightingModule.h"
 
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -39,6 +41,8 @@ public:
 
   /// Builds the map from top-down RGB rows; width must be 2 x height.
   bool Set(int width, int height, const float* rgb, std::string& error);
+  /// The same, taking the rows without a copy.
+  bool Set(int width, int height, std::vector<float>&& rgb, std::string& error);
   /// Fills with a function of the map-space direction.
   void SetFromFunction(int width, int height,
     void (*radiance)(const double dir[3], float rgb[3], void* data), void* data);
@@ -74,14 +78,22 @@ public:
   void ToWorld(const double map[3], double world[3]) const;
 
 private:
-  void BuildSampler();
+  // Sampler: conditional CDFs per row over columns, marginal CDF over rows.
+  // Built on the first Sample or Pdf (the SH route never samples a map, and
+  // for a 2k map the tables are 32 MB); copies of the map share them.
+  struct SamplerTables
+  {
+    std::once_flag Built;
+    std::vector<double> RowCdf, ColumnCdf, TexelWeight;
+    double TotalWeight = 0.0;
+  };
+  const SamplerTables& Sampler() const;
+  void BuildSampler(SamplerTables& tables) const;
 
   int Width = 0, Height = 0;
   double Rotation = 0.0, CosR = 1.0, SinR = 0.0;
   std::vector<float> RGB;
-  // Sampler: conditional CDFs per row over columns, marginal CDF over rows.
-  std::vector<double> RowCdf, ColumnCdf, TexelWeight;
-  double TotalWeight = 0.0;
+  std::shared_ptr<SamplerTables> Sampling = std::make_shared<SamplerTables>();
 };
 
 } // namespace proxygi

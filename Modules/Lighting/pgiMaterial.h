@@ -13,8 +13,24 @@
 
 class vtkPolyData;
 
+class vtkDataArray;
+
 namespace proxygi
 {
+/// The albedo of many points of one mesh: the array is looked up once.
+class PROXYGILIGHTING_EXPORT AlbedoReader
+{
+public:
+  AlbedoReader(vtkPolyData* mesh, const char* albedoArray, const double defaultAlbedo[3]);
+  void Get(vtkIdType id, double rgb[3]) const;
+
+private:
+  vtkDataArray* Array;
+  double Scale;
+  double Default[3];
+};
+
+/// One point's albedo (AlbedoReader for a single lookup).
 PROXYGILIGHTING_EXPORT void AlbedoOf(vtkPolyData* mesh, const char* albedoArray, vtkIdType id,
   const double defaultAlbedo[3], double rgb[3]);
 } // namespace proxygi

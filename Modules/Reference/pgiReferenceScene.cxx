@@ -33,11 +33,12 @@ bool AddPolyData(ReferenceTracer& tracer, vtkPolyData* mesh, const double defaul
   const vtkIdType np = tris->GetNumberOfPoints();
   std::vector<float> points(3 * np), albedo(3 * np);
   const bool perVertex = albedoArray && tris->GetPointData()->GetArray(albedoArray);
+  const AlbedoReader albedoOf(tris, albedoArray, defaultAlbedo);
   for (vtkIdType i = 0; i < np; ++i)
   {
     double p[3], a[3];
     tris->GetPoint(i, p);
-    AlbedoOf(tris, albedoArray, i, defaultAlbedo, a);
+    albedoOf.Get(i, a);
     for (int k = 0; k < 3; ++k)
     {
       points[3 * i + k] = static_cast<float>(p[k]);
@@ -78,6 +79,7 @@ bool AddProxySpheres(ReferenceTracer& tracer, vtkPolyData* proxies, const double
   }
   // Only the leaves (Level 0) are geometry; hierarchy parents bound them.
   vtkDataArray* level = proxies->GetPointData()->GetArray("Level");
+  const AlbedoReader proxyAlbedo(proxies, albedoArray, defaultAlbedo);
   for (vtkIdType i = 0; i < proxies->GetNumberOfPoints(); ++i)
   {
     if (level && level->GetTuple1(i) != 0.0)
@@ -86,7 +88,7 @@ bool AddProxySpheres(ReferenceTracer& tracer, vtkPolyData* proxies, const double
     }
     double c[3], a[3];
     proxies->GetPoint(i, c);
-    AlbedoOf(proxies, albedoArray, i, defaultAlbedo, a);
+    proxyAlbedo.Get(i, a);
     const float af[3] = { static_cast<float>(a[0]), static_cast<float>(a[1]),
       static_cast<float>(a[2]) };
     if (!tracer.AddSphere(c, radius->GetTuple1(i), af, error))

@@ -368,6 +368,7 @@ void VertexGI::UploadReceivers(vtkPGIGIBake* bake, const std::vector<ReceiverBlo
     vtkPolyData* input = block.Data;
     const vtkIdType n = std::min(input->GetNumberOfPoints(), vertices - block.Start);
     vtkSmartPointer<vtkDataArray> normals = ReceiverNormals(input);
+    const AlbedoReader albedoOf(input, albedoArray, fallback);
     for (vtkIdType i = 0; i < n; ++i)
     {
       double p[3], nd[3] = { 0.0, 0.0, 1.0 }, albedo[3];
@@ -390,7 +391,7 @@ void VertexGI::UploadReceivers(vtkPGIGIBake* bake, const std::vector<ReceiverBlo
           nd[2] = 1.0;
         }
       }
-      AlbedoOf(input, albedoArray, i, fallback, albedo);
+      albedoOf.Get(i, albedo);
       float* row = &data[9 * static_cast<std::size_t>(block.Start + i)];
       for (int k = 0; k < 3; ++k)
       {

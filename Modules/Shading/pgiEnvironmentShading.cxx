@@ -11,6 +11,28 @@
 
 namespace proxygi
 {
+namespace
+{
+// a . b in four partial sums (SIMD lanes at any width; n2 is a multiple of
+// 4 from order 2 up), then the two pairs.
+inline float FourWayDot(int n, const float* a, const float* b)
+{
+  float part[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  int q = 0;
+  for (; q + 4 <= n; q += 4)
+  {
+    for (int j = 0; j < 4; ++j)
+    {
+      part[j] += a[q + j] * b[q + j];
+    }
+  }
+  for (; q < n; ++q)
+  {
+    part[0] += a[q] * b[q];
+  }
+  return (part[0] + part[1]) + (part[2] + part[3]);
+}
+} // namespace
 
 EnvironmentShading::EnvironmentShading(
   int order, const double* red, const double* green, const double* blue, Path path, int tableHeight)
@@ -121,13 +143,7 @@ void EnvironmentShading::Shade(const float n[3], const float* g, float rgb[3]) c
     float sum = 0.0f;
     for (int k = 0; k < 4; ++k)
     {
-      const float* lh = &this->LHTable[(corners[k] * 3 + c) * n2];
-      float dot = 0.0f;
-      for (int q = 0; q < n2; ++q)
-      {
-        dot += lh[q] * g[q];
-      }
-      sum += w[k] * dot;
+      sum += w[k] * FourWayDot(n2, &this->LHTable[(corners[k] * 3 + c) * n2], g);
     }
     rgb[c] = std::max(0.0f, sum);
   }

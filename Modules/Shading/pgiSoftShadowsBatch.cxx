@@ -62,42 +62,50 @@ void BlockerLanesImpl(const float* lanes, const float* X, const float* Y, const 
       {
         const V vx = hn::Sub(cx, px), vy = hn::Sub(cy, py), vz = hn::Sub(cz, pz);
         const V h = hn::Add(hn::Add(hn::Mul(vx, nx), hn::Mul(vy, ny)), hn::Mul(vz, nz));
-        const V d2 = hn::Add(hn::Add(hn::Mul(vx, vx), hn::Mul(vy, vy)), hn::Mul(vz, vz));
-        const V r2 = hn::Mul(r, r), h2 = hn::Mul(h, h);
         const auto behind = hn::Le(h, hn::Neg(r));
         const auto front = hn::Ge(h, r);
-        const V rho = hn::Sqrt(hn::Max(zero, hn::Sub(d2, h2)));
-        const V delta = hn::Sqrt(hn::Max(zero, hn::Sub(r2, h2)));
-        const auto cut = hn::Gt(delta, zero);
-        const auto inside = hn::Lt(d2, r2);
-        // Inside: shrunk to the sphere tangent to T_p, ramped.
-        const V rampIn = hn::IfThenElse(
-          cut, hn::Min(one, hn::Div(hn::Mul(two, hn::Sub(delta, rho)), delta)), zero);
-        const V rIn = hn::Mul(h, hn::Max(zero, rampIn));
-        // Outside and cut: the sphere from the highest point down to T_p.
-        const V rampOut = hn::IfThenElse(
-          cut, hn::Min(one, hn::Div(hn::Div(hn::Sub(d2, r2), hn::Add(rho, delta)), delta)), one);
-        const V halfH = hn::Mul(half, hn::Add(h, r));
-        const V rOut = hn::Mul(halfH, hn::Max(zero, rampOut));
-        const V ox = hn::Add(hn::Sub(cx, hn::Mul(h, nx)), hn::Mul(halfH, nx));
-        const V oy = hn::Add(hn::Sub(cy, hn::Mul(h, ny)), hn::Mul(halfH, ny));
-        const V oz = hn::Add(hn::Sub(cz, hn::Mul(h, nz)), hn::Mul(halfH, nz));
-        const V rCut = hn::IfThenElse(inside, rIn, rOut);
-        const auto keepCut = hn::And(hn::Gt(rCut, zero), hn::Or(hn::Not(inside), hn::Gt(h, zero)));
-        r = hn::IfThenElse(front, r, rCut);
-        qx = hn::IfThenElse(hn::Or(front, inside), cx, ox);
-        qy = hn::IfThenElse(hn::Or(front, inside), cy, oy);
-        qz = hn::IfThenElse(hn::Or(front, inside), cz, oz);
-        keep = hn::AndNot(behind, hn::Or(front, keepCut));
+        keep = hn::Not(behind);
+        // Only spheres the tangent plane cuts change (most lanes: none).
+        if (!hn::AllTrue(d, hn::Or(front, behind)))
+        {
+          const V d2 = hn::Add(hn::Add(hn::Mul(vx, vx), hn::Mul(vy, vy)), hn::Mul(vz, vz));
+          const V r2 = hn::Mul(r, r), h2 = hn::Mul(h, h);
+          const V rho = hn::Sqrt(hn::Max(zero, hn::Sub(d2, h2)));
+          const V delta = hn::Sqrt(hn::Max(zero, hn::Sub(r2, h2)));
+          const auto cut = hn::Gt(delta, zero);
+          const auto inside = hn::Lt(d2, r2);
+          // Inside: shrunk to the sphere tangent to T_p, ramped.
+          const V rampIn = hn::IfThenElse(
+            cut, hn::Min(one, hn::Div(hn::Mul(two, hn::Sub(delta, rho)), delta)), zero);
+          const V rIn = hn::Mul(h, hn::Max(zero, rampIn));
+          // Outside and cut: the sphere from the highest point down to T_p.
+          const V rampOut = hn::IfThenElse(
+            cut, hn::Min(one, hn::Div(hn::Div(hn::Sub(d2, r2), hn::Add(rho, delta)), delta)), one);
+          const V halfH = hn::Mul(half, hn::Add(h, r));
+          const V rOut = hn::Mul(halfH, hn::Max(zero, rampOut));
+          const V ox = hn::Add(hn::Sub(cx, hn::Mul(h, nx)), hn::Mul(halfH, nx));
+          const V oy = hn::Add(hn::Sub(cy, hn::Mul(h, ny)), hn::Mul(halfH, ny));
+          const V oz = hn::Add(hn::Sub(cz, hn::Mul(h, nz)), hn::Mul(halfH, nz));
+          const V rCut = hn::IfThenElse(inside, rIn, rOut);
+          const auto keepCut =
+            hn::And(hn::Gt(rCut, zero), hn::Or(hn::Not(inside), hn::Gt(h, zero)));
+          r = hn::IfThenElse(front, r, rCut);
+          qx = hn::IfThenElse(hn::Or(front, inside), cx, ox);
+          qy = hn::IfThenElse(hn::Or(front, inside), cy, oy);
+          qz = hn::IfThenElse(hn::Or(front, inside), cz, oz);
+          keep = hn::AndNot(behind, hn::Or(front, keepCut));
+        }
       }
       const V ex = hn::Sub(qx, px), ey = hn::Sub(qy, py), ez = hn::Sub(qz, pz);
       const V dist = hn::Sqrt(hn::Add(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)), hn::Mul(ez, ez)));
       keep = hn::And(keep, hn::And(hn::Gt(dist, zero), hn::Ge(r, hn::Mul(sinCut, dist))));
-      const V sine = hn::Min(one, hn::Div(r, dist));
+      // One division (the scalar path's too).
+      const V inverse = hn::Div(one, dist);
+      const V sine = hn::Min(one, hn::Mul(r, inverse));
       hn::Store(hn::IfThenElse(keep, hn::Asin(d, sine), skip), d, out);
-      hn::Store(hn::Div(ex, dist), d, dx + s * W + k);
-      hn::Store(hn::Div(ey, dist), d, dy + s * W + k);
-      hn::Store(hn::Div(ez, dist), d, dz + s * W + k);
+      hn::Store(hn::Mul(ex, inverse), d, dx + s * W + k);
+      hn::Store(hn::Mul(ey, inverse), d, dy + s * W + k);
+      hn::Store(hn::Mul(ez, inverse), d, dz + s * W + k);
     }
   }
 }

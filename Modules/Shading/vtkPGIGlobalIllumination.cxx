@@ -1082,7 +1082,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   const bool planeBounceShadows = settings->GetPlaneBounceShadows();
   const bool shadowsOn = settings->GetShadows();
   const char* albedoArray = settings->GetAlbedoArrayName();
-  const double* defaultAlbedo = settings->GetDefaultAlbedo();
+  const proxygi::AlbedoReader albedoOf(receivers, albedoArray, settings->GetDefaultAlbedo());
   const proxygi::ShadowedIndirect shadowedIndirect(b.IndirectKernel,
     settings->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT
       ? proxygi::SphericalLightBlocking::PerObject
@@ -1434,8 +1434,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
         for (vtkIdType i = first; i < last; ++i)
         {
           const vtkIdType j = i - first;
-          double pd[3], albedo[3];
-          receivers->GetPoint(i, pd);
+          double albedo[3];
           const float* p = &points[3 * j];
           const float* nf = &facing[3 * j];
           float rgb[3], bounce[3] = { 0, 0, 0 }, lit[3] = { 0, 0, 0 },
@@ -1537,10 +1536,12 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
           }
           if (lightTables)
           {
+            double pd[3];
+            receivers->GetPoint(i, pd);
             proxygi::LocalLightsRadiance(
               b.Locals, *lightTables, pd, nf, shadowsOn ? g : unshadowed, lit);
           }
-          proxygi::AlbedoOf(receivers, albedoArray, i, defaultAlbedo, albedo);
+          albedoOf.Get(i, albedo);
           float sum[3];
           for (int k = 0; k < 3; ++k)
           {
@@ -1640,7 +1641,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
               sum[c] += weights[e] * (lit[3 * t + c] + locals[3 * t + c]);
             }
           }
-          proxygi::AlbedoOf(receivers, albedoArray, i, defaultAlbedo, albedo);
+          albedoOf.Get(i, albedo);
           float* out = indirectSelf->GetPointer(3 * i);
           float* all = total->GetPointer(3 * i);
           for (int c = 0; c < 3; ++c)

@@ -147,7 +147,16 @@ void AddCapsOfOrder(const CapTables& tables, int count, const float* theta, cons
   constexpr int n2 = order * order;
   const int rows = tables.GetResolution(), last = rows - 1;
   const int tableOrder = tables.GetOrder();
+#if HWY_TARGET == HWY_SCALAR
   const float* table = tables.GetLogTableFloat().data();
+#else
+  const hn::Repartition<std::uint64_t, D> du;
+  const hn::Repartition<std::int64_t, D> dw;
+  const hn::Half<decltype(di)> dh;
+  const std::uint64_t* pairs = tables.GetLogPairTable().data();
+  const float* bands = tables.GetLogBandTable().data();
+  const int bandStride = tables.GetLogBandStride();
+#endif
   const V scale = hn::Set(d, static_cast<float>(tables.GetThetaScale()));
   const V lastRow = hn::Set(d, static_cast<float>(last));
   for (int k = 0; k < W; k += lanes)
@@ -171,27 +180,70 @@ void AddCapsOfOrder(const CapTables& tables, int count, const float* theta, cons
       auto row = hn::ConvertTo(di, u);
       row = hn::Min(row, hn::Set(di, last - 1));
       const V t = hn::Sub(u, hn::ConvertTo(d, row));
-      const auto base = hn::Mul(row, hn::Set(di, tableOrder));
       Lane zh[order];
-      for (int l = 0; l < order; ++l)
+#if HWY_TARGET != HWY_SCALAR
+      // Neighbouring receivers see a blocker at nearly one angle: when the
+      // lanes' rows fit in one vector from the lowest, the rows are loaded
+      // and permuted into place (the same floats as the gathers).
+      const auto keepRow = hn::RebindMask(di, keep);
+      const int low =
+        hn::GetLane(hn::MinOfLanes(di, hn::IfThenElse(keepRow, row, hn::Set(di, last))));
+      const int high = hn::GetLane(hn::MaxOfLanes(di, hn::IfThenElseZero(keepRow, row)));
+      if (high - low < lanes)
       {
-        const auto at = hn::Add(base, hn::Set(di, l));
-        const V r0 = hn::GatherIndex(d, table, at);
-        const V r1 = hn::GatherIndex(d, table, hn::Add(at, hn::Set(di, tableOrder)));
-        V z = hn::MulAdd(hn::Sub(r1, r0), t, r0);
-        if (ratios)
+        const auto offset = hn::IfThenElseZero(keepRow, hn::Sub(row, hn::Set(di, low)));
+        const auto at = hn::IndicesFromVec(d, offset);
+        for (int l = 0; l < order; ++l)
         {
-          z = hn::Mul(z, hn::Set(d, ratios[b * order + l]));
+          const float* band = bands + l * bandStride + low;
+          const V r0 = hn::TableLookupLanes(hn::LoadU(d, band), at);
+          const V r1 = hn::TableLookupLanes(hn::LoadU(d, band + 1), at);
+          V z = hn::MulAdd(hn::Sub(r1, r0), t, r0);
+          if (ratios)
+          {
+            z = hn::Mul(z, hn::Set(d, ratios[b * order + l]));
+          }
+          zh[l] = Lane(hn::IfThenElseZero(keep, z));
         }
-        zh[l] = Lane(hn::IfThenElseZero(keep, z));
+      }
+      else
+#endif
+      {
+        const auto base = hn::Mul(row, hn::Set(di, tableOrder));
+        for (int l = 0; l < order; ++l)
+        {
+          const auto at = hn::Add(base, hn::Set(di, l));
+#if HWY_TARGET == HWY_SCALAR
+          const V r0 = hn::GatherIndex(d, table, at);
+          const V r1 = hn::GatherIndex(d, table, hn::Add(at, hn::Set(di, tableOrder)));
+#else
+          // Both ends of each lane's interval in one 64-bit element: half the
+          // gathered elements of two 32-bit gathers, the same floats.
+          const V lo =
+            hn::BitCast(d, hn::GatherIndex(du, pairs, hn::PromoteTo(dw, hn::LowerHalf(dh, at))));
+          const V hi =
+            hn::BitCast(d, hn::GatherIndex(du, pairs, hn::PromoteTo(dw, hn::UpperHalf(dh, at))));
+          const V r0 = hn::ConcatEven(d, hi, lo);
+          const V r1 = hn::ConcatOdd(d, hi, lo);
+#endif
+          V z = hn::MulAdd(hn::Sub(r1, r0), t, r0);
+          if (ratios)
+          {
+            z = hn::Mul(z, hn::Set(d, ratios[b * order + l]));
+          }
+          zh[l] = Lane(hn::IfThenElseZero(keep, z));
+        }
       }
       // Skipped lanes may hold any direction: zero it, so y stays finite.
       Lane y[order * order];
       BasisLanes(order, Lane(hn::IfThenElseZero(keep, hn::Load(d, dirX + b * W + k))),
         Lane(hn::IfThenElseZero(keep, hn::Load(d, dirY + b * W + k))),
         Lane(hn::IfThenElseZero(keep, hn::Load(d, dirZ + b * W + k))), y);
+      // Unrolled, so the accumulators stay in registers.
+#pragma GCC unroll 8
       for (int l = 0; l < order; ++l)
       {
+#pragma GCC unroll 16
         for (int i = l * l; i < (l + 1) * (l + 1); ++i)
         {
           acc[i] = hn::MulAdd(y[i].v, zh[l].v, acc[i]);
@@ -245,7 +297,32 @@ void GuardExtremesImpl(int order, const float* g, float* vmin, float* vmax)
       c[i] = hn::Load(d, g + i * W + k);
     }
     V lo = hn::Set(d, HUGE_VALF), hi = hn::Set(d, -HUGE_VALF);
-    for (int s = 0; s < count; ++s)
+    // Four samples at a time: four independent chains of multiply-adds
+    // (each sample's sum keeps its order).
+    constexpr int group = 4;
+    int s = 0;
+    for (; s + group <= count; s += group)
+    {
+      const float* y = basis + s * n2;
+      V v[group];
+      for (int q = 0; q < group; ++q)
+      {
+        v[q] = hn::Mul(c[0], hn::Set(d, y[q * n2]));
+      }
+      for (int i = 1; i < n2; ++i)
+      {
+        for (int q = 0; q < group; ++q)
+        {
+          v[q] = hn::MulAdd(c[i], hn::Set(d, y[q * n2 + i]), v[q]);
+        }
+      }
+      for (int q = 0; q < group; ++q)
+      {
+        lo = hn::Min(lo, v[q]);
+        hi = hn::Max(hi, v[q]);
+      }
+    }
+    for (; s < count; ++s)
     {
       const float* y = basis + s * n2;
       V v = hn::Mul(c[0], hn::Set(d, y[0]));
@@ -308,6 +385,90 @@ void RepeatedSquareImpl(int order, const std::int32_t* steps, float* g)
   }
 }
 
+// Per lane: 1 where every coefficient is finite (else 0), and the sum of
+// squares of rows 1..n2-1 added in row order (the scalar sum's order).
+void LaneNormsImpl(int n2, const float* f, float* norm2, float* finite)
+{
+  const D d;
+  const int lanes = static_cast<int>(hn::Lanes(d));
+  for (int k = 0; k < W; k += lanes)
+  {
+    const V first = hn::Load(d, f + k);
+    auto ok = hn::IsFinite(first);
+    V sum = hn::Zero(d);
+    for (int i = 1; i < n2; ++i)
+    {
+      const V v = hn::Load(d, f + i * W + k);
+      ok = hn::And(ok, hn::IsFinite(v));
+      sum = hn::Add(sum, hn::Mul(v, v));
+    }
+    hn::Store(sum, d, norm2 + k);
+    hn::Store(hn::IfThenElseZero(ok, hn::Set(d, 1.0f)), d, finite + k);
+  }
+}
+
+// The OL base per lane: out_i = ((f_i scale) b) e for i > 0, out_0 = a e
+// (a holds a sqrt(4 pi)); lanes with finite 0 get zeros.
+void LaneBaseImpl(int n2, const float* f, const float* scale, const float* b, const float* e,
+  const float* a, const float* finite, float* out)
+{
+  const D d;
+  const int lanes = static_cast<int>(hn::Lanes(d));
+  for (int k = 0; k < W; k += lanes)
+  {
+    const auto ok = hn::Gt(hn::Load(d, finite + k), hn::Zero(d));
+    const V sk = hn::Load(d, scale + k), bk = hn::Load(d, b + k), ek = hn::Load(d, e + k);
+    hn::Store(hn::IfThenElseZero(ok, hn::Mul(hn::Load(d, a + k), ek)), d, out + k);
+    for (int i = 1; i < n2; ++i)
+    {
+      const V v = hn::Mul(hn::Mul(hn::Mul(hn::Load(d, f + i * W + k), sk), bk), ek);
+      hn::Store(hn::IfThenElseZero(ok, v), d, out + i * W + k);
+    }
+  }
+}
+
+// GuardInBounds per lane (1: the cheap bound cannot clear it), in float: a
+// lane on the edge only costs the sampled check, which decides alike.
+void GuardBoundsImpl(int order, const float* g, float tolerance, float* outside)
+{
+  const D d;
+  const int lanes = static_cast<int>(hn::Lanes(d));
+  const V lo = hn::Set(d, -tolerance), hi = hn::Set(d, 1.0f + tolerance);
+  for (int k = 0; k < W; k += lanes)
+  {
+    const V mean = hn::Mul(hn::Load(d, g + k), hn::Set(d, static_cast<float>(1.0 / SqrtFourPi)));
+    V bound = hn::Zero(d);
+    for (int l = 1; l < order; ++l)
+    {
+      V band = hn::Zero(d);
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+      {
+        const V c = hn::Load(d, g + i * W + k);
+        band = hn::MulAdd(c, c, band);
+      }
+      const float weight = static_cast<float>((2 * l + 1) / (4.0 * Pi));
+      bound = hn::Add(bound, hn::Sqrt(hn::Mul(band, hn::Set(d, weight))));
+    }
+    const auto inside = hn::And(hn::Ge(hn::Sub(mean, bound), lo), hn::Le(hn::Add(mean, bound), hi));
+    hn::Store(hn::IfThenZeroElse(inside, hn::Set(d, 1.0f)), d, outside + k);
+  }
+}
+
+// Zeros the lanes whose finite is 0.// Zeros the lanes whose finite is 0.
+void ZeroLanesImpl(int n2, const float* finite, float* g)
+{
+  const D d;
+  const int lanes = static_cast<int>(hn::Lanes(d));
+  for (int k = 0; k < W; k += lanes)
+  {
+    const auto ok = hn::Gt(hn::Load(d, finite + k), hn::Zero(d));
+    for (int i = 0; i < n2; ++i)
+    {
+      hn::Store(hn::IfThenElseZero(ok, hn::Load(d, g + i * W + k)), d, g + i * W + k);
+    }
+  }
+}
+
 } // namespace HWY_NAMESPACE
 } // namespace sh
 } // namespace proxygi
@@ -323,6 +484,10 @@ HWY_EXPORT(BatchAddCapsImpl);
 HWY_EXPORT(GuardExtremesImpl);
 HWY_EXPORT(BlendImpl);
 HWY_EXPORT(RepeatedSquareImpl);
+HWY_EXPORT(LaneNormsImpl);
+HWY_EXPORT(LaneBaseImpl);
+HWY_EXPORT(ZeroLanesImpl);
+HWY_EXPORT(GuardBoundsImpl);
 
 namespace
 {
@@ -441,24 +606,20 @@ void BatchExp(int order, const float* f, float* g, const ExpOptions& options, St
     return;
   }
   // Per lane, as HybridExp does: DC isolated, the schedule from |f^|, the
-  // OL base at 2^-s and 2^-(s+1). Only the products are vectorised.
+  // OL base at 2^-s and 2^-(s+1). The lanes' sums and products run as
+  // vectors; the schedule and the OL lookups per lane.
   const CapTables& tables = CapTables::Get(order);
   alignas(64) float finer[MaxCoefficients * W], squared[MaxCoefficients * W], keepWeight[W],
-    squaredWeight[W];
+    squaredWeight[W], norm2[W], finite[W], scale[2][W], slope[2][W], dcScale[2][W], base[2][W];
   alignas(64) std::int32_t steps[W];
+  HWY_DYNAMIC_DISPATCH(LaneNormsImpl)(n2, f, norm2, finite);
   bool blend = false;
   for (int k = 0; k < W; ++k)
   {
-    bool finite = true;
-    float norm2 = 0.0f;
-    for (int i = 0; i < n2; ++i)
-    {
-      finite = finite && std::isfinite(f[i * W + k]);
-      norm2 += i > 0 ? f[i * W + k] * f[i * W + k] : 0.0f;
-    }
-    status[k] = finite ? Status::Ok : Status::NonFiniteInput;
-    const double norm = finite ? std::sqrt(norm2) : 0.0;
-    const double dcExponent = finite ? static_cast<double>(f[k]) / SqrtFourPi : 0.0;
+    const bool ok = finite[k] > 0.0f;
+    status[k] = ok ? Status::Ok : Status::NonFiniteInput;
+    const double norm = ok ? std::sqrt(norm2[k]) : 0.0;
+    const double dcExponent = ok ? static_cast<double>(f[k]) / SqrtFourPi : 0.0;
     int s = 0;
     double wk = 0.0;
     HybridSchedule(order, norm, options, s, wk);
@@ -468,50 +629,48 @@ void BatchExp(int order, const float* f, float* g, const ExpOptions& options, St
     blend = blend || wk > 0.0;
     for (int level = 0; level < 2; ++level)
     {
-      float* out = level == 0 ? g : finer;
-      const float scale = static_cast<float>(std::ldexp(1.0, -(s + level)));
-      float a, b;
-      tables.OptimalLinear(static_cast<float>(norm) * scale, a, b);
-      const float e = static_cast<float>(std::exp(std::ldexp(dcExponent, -(s + level))));
-      for (int i = 1; i < n2; ++i)
-      {
-        out[i * W + k] = finite ? (f[i * W + k] * scale * b) * e : 0.0f;
-      }
-      out[k] = finite ? a * static_cast<float>(SqrtFourPi) * e : 0.0f;
+      scale[level][k] = static_cast<float>(std::ldexp(1.0, -(s + level)));
+      float a;
+      tables.OptimalLinear(static_cast<float>(norm) * scale[level][k], a, slope[level][k]);
+      dcScale[level][k] = static_cast<float>(std::exp(std::ldexp(dcExponent, -(s + level))));
+      base[level][k] = a * static_cast<float>(SqrtFourPi);
     }
   }
+  HWY_DYNAMIC_DISPATCH(LaneBaseImpl)(n2, f, scale[0], slope[0], dcScale[0], base[0], finite, g);
   if (blend)
   {
+    HWY_DYNAMIC_DISPATCH(LaneBaseImpl)
+    (n2, f, scale[1], slope[1], dcScale[1], base[1], finite, finer);
     HWY_DYNAMIC_DISPATCH(BatchSquareImpl)(order, finer, squared);
     HWY_DYNAMIC_DISPATCH(BlendImpl)(n2, keepWeight, squaredWeight, squared, g);
   }
   HWY_DYNAMIC_DISPATCH(RepeatedSquareImpl)(order, steps, g);
-  bool guard = false, check[W] = {};
+  // Non-finite results, and lanes that failed before, become zeros.
+  HWY_DYNAMIC_DISPATCH(LaneNormsImpl)(n2, g, norm2, finite);
+  alignas(64) float outside[W];
+  if (options.RangeGuard)
+  {
+    HWY_DYNAMIC_DISPATCH(GuardBoundsImpl)
+    (order, g, static_cast<float>(options.RangeTolerance), outside);
+  }
+  bool guard = false, check[W] = {}, zero = false;
   for (int k = 0; k < W; ++k)
   {
-    bool finite = true;
-    for (int i = 0; i < n2; ++i)
+    if (!(finite[k] > 0.0f) || status[k] != Status::Ok)
     {
-      finite = finite && std::isfinite(g[i * W + k]);
-    }
-    if (!finite || status[k] != Status::Ok)
-    {
-      for (int i = 0; i < n2; ++i)
-      {
-        g[i * W + k] = 0.0f;
-      }
+      finite[k] = 0.0f;
+      zero = true;
       status[k] = status[k] != Status::Ok ? status[k] : Status::NonFiniteResult;
     }
     else if (options.RangeGuard)
     {
-      float gl[MaxCoefficients];
-      for (int i = 0; i < n2; ++i)
-      {
-        gl[i] = g[i * W + k];
-      }
-      check[k] = !GuardInBounds(order, gl, options.RangeTolerance);
+      check[k] = outside[k] > 0.0f;
       guard = guard || check[k];
     }
+  }
+  if (zero)
+  {
+    HWY_DYNAMIC_DISPATCH(ZeroLanesImpl)(n2, finite, g);
   }
   if (!guard)
   {

@@ -6,6 +6,8 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace proxygi
 {
@@ -23,6 +25,30 @@ double LogRatio(double x)
     return 1.0 - 0.5 * d + d * d / 3.0;
   }
   return std::log(x) / d;
+}
+
+// log(g) = R q'(max(D, floor)) R^T (g - 1) from M_g's eigensystem; g's first
+// coefficient is its DC (the constant 1 is sqrt(4 pi) there).
+Status ClippedLog(const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eig, double floor,
+  const double* g, double* f)
+{
+  const Eigen::VectorXd& d = eig.eigenvalues();
+  const Eigen::Index n = d.size();
+  Eigen::VectorXd q(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    q[i] = LogRatio(std::max(d[i], floor));
+  }
+  Eigen::VectorXd gm1 = Eigen::Map<const Eigen::VectorXd>(g, n);
+  gm1[0] -= SqrtFourPi;
+  const Eigen::MatrixXd& r = eig.eigenvectors();
+  const Eigen::VectorXd result = r * q.asDiagonal() * (r.transpose() * gm1);
+  if (!result.allFinite())
+  {
+    return Status::NonFiniteResult;
+  }
+  Eigen::Map<Eigen::VectorXd>(f, n) = result;
+  return Status::Ok;
 }
 } // namespace
 
@@ -49,23 +75,70 @@ Status Log(int order, const double* g, double* f, const LogOptions& options)
   {
     return Status::NonFiniteResult;
   }
-  const Eigen::VectorXd& d = eig.eigenvalues();
-  const double floor = std::max(options.RelativeClip * d.maxCoeff(), options.AbsoluteFloor);
-  Eigen::VectorXd q(n2);
-  for (int i = 0; i < n2; ++i)
+  const double floor =
+    std::max(options.RelativeClip * eig.eigenvalues().maxCoeff(), options.AbsoluteFloor);
+  return ClippedLog(eig, floor, g, f);
+}
+
+Status LogZonal(int order, const double* zh, double* logZh, const LogOptions& options)
+{
+  if (order < 1 || order > MaxOrder)
   {
-    q[i] = LogRatio(std::max(d[i], floor));
+    return Status::InvalidOrder;
   }
-  Eigen::VectorXd gm1 = Eigen::Map<const Eigen::VectorXd>(g, n2);
-  gm1[0] -= SqrtFourPi;
-  const Eigen::MatrixXd& r = eig.eigenvectors();
-  const Eigen::VectorXd result = r * q.asDiagonal() * (r.transpose() * gm1);
-  if (!result.allFinite())
+  Fill(logZh, order, 0.0);
+  if (!AllFinite(zh, order))
   {
-    return Status::NonFiniteResult;
+    return Status::NonFiniteInput;
   }
-  Eigen::Map<Eigen::VectorXd>(f, n2) = result;
-  return Status::Ok;
+  if (!(options.RelativeClip >= 0.0) || !(options.AbsoluteFloor > 0.0))
+  {
+    return Status::InvalidArgument;
+  }
+  const int n2 = NumCoefficients(order);
+  double g[MaxCoefficients];
+  Fill(g, n2, 0.0);
+  for (int l = 0; l < order; ++l)
+  {
+    g[Index(l, 0)] = zh[l];
+  }
+  Eigen::MatrixXd m(n2, n2);
+  TripleProduct::Get(order).ProductMatrix(g, m.data());
+  // Block m couples the bands l >= |m| of that m only.
+  double largest = -std::numeric_limits<double>::infinity();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> zonal;
+  for (int k = -(order - 1); k < order; ++k)
+  {
+    const int low = std::abs(k), size = order - low;
+    Eigen::MatrixXd block(size, size);
+    for (int a = 0; a < size; ++a)
+    {
+      for (int b = 0; b < size; ++b)
+      {
+        block(a, b) = m(Index(low + a, k), Index(low + b, k));
+      }
+    }
+    if (k == 0)
+    {
+      zonal.compute(block);
+      if (zonal.info() != Eigen::Success)
+      {
+        return Status::NonFiniteResult;
+      }
+      largest = std::max(largest, zonal.eigenvalues().maxCoeff());
+    }
+    else
+    {
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> values(block, Eigen::EigenvaluesOnly);
+      if (values.info() != Eigen::Success)
+      {
+        return Status::NonFiniteResult;
+      }
+      largest = std::max(largest, values.eigenvalues().maxCoeff());
+    }
+  }
+  return ClippedLog(
+    zonal, std::max(options.RelativeClip * largest, options.AbsoluteFloor), zh, logZh);
 }
 
 Status LogByProjection(int order, const double* g, double* f, double epsilon)

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -15,24 +16,16 @@ namespace sh
 
 constexpr int CapTables::DefaultResolution;
 constexpr double CapTables::MaxAngle;
+constexpr int CapTables::BandPadding;
 
 namespace
 {
-// Cap log as a ZH (unscaled) via the eigen-inversion log of the full vector.
+// Cap log as a ZH (unscaled): the eigen-inversion log of the zonal vector.
 void CapLogZonal(int order, double theta, const LogOptions& options, double* zh)
 {
-  double zv[MaxOrder], g[MaxCoefficients], f[MaxCoefficients];
+  double zv[MaxOrder];
   CapVisibilityZonal(order, theta, zv);
-  Fill(g, NumCoefficients(order), 0.0);
-  for (int l = 0; l < order; ++l)
-  {
-    g[Index(l, 0)] = zv[l];
-  }
-  Log(order, g, f, options);
-  for (int l = 0; l < order; ++l)
-  {
-    zh[l] = f[Index(l, 0)];
-  }
+  LogZonal(order, zv, zh, options);
 }
 } // namespace
 
@@ -65,6 +58,25 @@ CapTables::CapTables(int order, int resolution, const LogOptions& log)
   }
   this->VisibilityF.assign(this->Visibility.begin(), this->Visibility.end());
   this->LogF.assign(this->LogD.begin(), this->LogD.end());
+  const int stride = this->GetLogBandStride();
+  this->LogBands.resize(static_cast<std::size_t>(order) * stride);
+  for (int l = 0; l < order; ++l)
+  {
+    for (int i = 0; i < stride; ++i)
+    {
+      this->LogBands[l * stride + i] = this->LogF[std::min(i, resolution - 1) * order + l];
+    }
+  }
+  this->LogPairs.resize(this->LogF.size());
+  for (int i = 0; i < resolution; ++i)
+  {
+    const int next = std::min(i + 1, resolution - 1);
+    for (int l = 0; l < order; ++l)
+    {
+      const float ends[2] = { this->LogF[i * order + l], this->LogF[next * order + l] };
+      std::memcpy(&this->LogPairs[i * order + l], ends, sizeof(ends));
+    }
+  }
 
   // Optimal linear fit (eq. 24) on caps sampled finer than the output grid.
   const int fitSamples = 4 * resolution;

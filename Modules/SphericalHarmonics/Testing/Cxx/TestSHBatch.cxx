@@ -107,15 +107,26 @@ int TestSHBatch(int, char*[])
           tp.Square(lane, ref);
           worstSquare = std::max(worstSquare, LaneError(n2, out, k, ref));
         }
-        // Summed rotated cap logs, some lanes skipping some blockers.
+        // Summed rotated cap logs, some lanes skipping some blockers. Every
+        // other pair of trials puts each blocker's lanes within a few table
+        // rows of each other (neighbouring receivers: the rows are loaded
+        // and permuted), the others anywhere (gathered).
         const CapTables& tables = CapTables::Get(order);
         constexpr int Count = 7;
         alignas(64) float theta[Count * W], dx[Count * W], dy[Count * W], dz[Count * W];
         float ratios[Count * MaxOrder];
-        std::uniform_real_distribution<float> angle(-0.3f, 1.7f), u(-1.0f, 1.0f), r(0.5f, 1.5f);
+        std::uniform_real_distribution<float> angle(-0.3f, 1.7f), u(-1.0f, 1.0f), r(0.5f, 1.5f),
+          jitter(0.0f, 0.03f);
+        const bool coherent = trial % 4 >= 2;
+        float blockerAngle[Count];
+        for (float& a : blockerAngle)
+        {
+          a = angle(rng);
+        }
         for (int i = 0; i < Count * W; ++i)
         {
-          theta[i] = angle(rng); // beyond pi/2 clamps like CapLog
+          // Beyond pi/2 clamps like CapLog; 0.03 is about 5 rows.
+          theta[i] = coherent ? blockerAngle[i / W] + jitter(rng) : angle(rng);
           float d[3] = { u(rng), u(rng), u(rng) };
           const float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + 1e-6f;
           dx[i] = d[0] / len;
