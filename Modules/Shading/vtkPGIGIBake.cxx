@@ -305,8 +305,6 @@ bool vtkPGIGIBake::ProjectLight(vtkPGILighting* lighting, proxygi::BakedScene& p
     b.LightAbovePlanes = std::move(previous.LightAbovePlanes);
     b.PlaneVisibility = std::move(previous.PlaneVisibility);
     b.Shading = std::move(previous.Shading);
-    b.BounceOpenShading = std::move(previous.BounceOpenShading);
-    b.BounceShading = std::move(previous.BounceShading);
     b.IndirectShading = std::move(previous.IndirectShading);
     b.BrightLights = std::move(previous.BrightLights);
     b.BrightestFraction = previous.BrightestFraction;
@@ -367,17 +365,13 @@ void vtkPGIGIBake::ProjectEnvironment(const proxygi::EnvironmentMap& map)
   }
   b.Shading =
     std::make_shared<proxygi::EnvironmentShading>(order, above, above + n2, above + 2 * n2, path);
-  b.BounceOpenShading = b.OpenShading;
-  b.BounceShading = b.Shading;
   std::vector<double> bounceAbove;
   if (takeOut)
   {
-    // The bounce sees the whole map.
-    std::vector<double> whole(3 * static_cast<std::size_t>(n2), 0.0);
-    map.ProjectSH(order, &whole[0], &whole[n2], &whole[2 * n2]);
-    b.BounceOpenShading = std::make_shared<proxygi::EnvironmentShading>(
-      order, &whole[0], &whole[n2], &whole[2 * n2], path);
-    bounceAbove = whole;
+    // The bounce sees the whole map (its coefficients; a table only where
+    // the bounce's shading reads one, below).
+    bounceAbove.assign(3 * static_cast<std::size_t>(n2), 0.0);
+    map.ProjectSH(order, &bounceAbove[0], &bounceAbove[n2], &bounceAbove[2 * n2]);
     if (b.PlanesInLight)
     {
       std::vector<double> unused(n2);
@@ -385,13 +379,13 @@ void vtkPGIGIBake::ProjectEnvironment(const proxygi::EnvironmentMap& map)
         static_cast<int>(b.SceneBlockers.Planes()), &bounceAbove[0], &bounceAbove[n2],
         &bounceAbove[2 * n2], unused.data());
     }
-    b.BounceShading = std::make_shared<proxygi::EnvironmentShading>(
-      order, &bounceAbove[0], &bounceAbove[n2], &bounceAbove[2 * n2], path);
     above = bounceAbove.data();
   }
   if (b.IndirectOrder == order)
   {
-    b.IndirectShading = b.BounceShading;
+    b.IndirectShading = takeOut ? std::make_shared<proxygi::EnvironmentShading>(
+                                    order, above, above + n2, above + 2 * n2, path)
+                                : b.Shading;
   }
   else
   {

@@ -26,8 +26,8 @@
  * Bright lights (settings BrightLights): ProjectLight takes the map's
  * compact peaks out (pgiBrightLights.h). The direct light's SH (Light,
  * Shading, OpenShading) is then the residual's; the bounce keeps the whole
- * map (BounceShading, BounceOpenShading, Secondary, the spherical lights'
- * first pass), where a blurred sun costs little; the consumer shades the
+ * map (IndirectShading, Secondary, the spherical lights' first pass), where
+ * a blurred sun costs little; the consumer shades the
  * lights themselves with their own shadows (pgiBrightLightShadows.h).
  */
 #ifndef vtkPGIGIBake_h
@@ -80,9 +80,6 @@ struct PROXYGISHADING_EXPORT BakedScene
   /// Shading of L (receivers without shadows or under a plane) and of the
   /// light above the planes.
   std::shared_ptr<const EnvironmentShading> OpenShading, Shading;
-  /// The same for the bounce: the whole map, bright lights included (the
-  /// same objects as OpenShading and Shading when none were taken out).
-  std::shared_ptr<const EnvironmentShading> BounceOpenShading, BounceShading;
   /// The bright lights taken out of the map (L is the residual), the share
   /// of the map's power in its brightest compact peak and in those taken.
   std::vector<DistantLight> BrightLights;
@@ -93,9 +90,10 @@ struct PROXYGISHADING_EXPORT BakedScene
   /// The kernel settings of this scene (PlanesInLogSpace = !PlanesInLight).
   SoftShadowSettings Kernel;
   /// The shadowed bounce's order (settings IndirectOrder; Order when not
-  /// below it), its kernel (Kernel at that order) and its light: the bounce
-  /// light above the planes, truncated to that order (BounceShading when
-  /// the orders agree). The spherical lights' Radiance has this order.
+  /// below it), its kernel (Kernel at that order) and its light: the whole
+  /// map's light above the planes, bright lights included, truncated to
+  /// that order (Shading itself when the orders agree and no light was
+  /// taken out). The spherical lights' Radiance has this order.
   int IndirectOrder = 0;
   SoftShadowSettings IndirectKernel;
   std::shared_ptr<const EnvironmentShading> IndirectShading;
