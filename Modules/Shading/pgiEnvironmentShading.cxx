@@ -13,8 +13,8 @@ namespace proxygi
 {
 namespace
 {
-// a . b in four partial sums (SIMD lanes at any width; n2 is a multiple of
-// 4 from order 2 up), then the two pairs.
+// a . b in four partial sums (SIMD lanes at any width; an n that is not a
+// multiple of 4 adds its tail to the first), then the two pairs.
 inline float FourWayDot(int n, const float* a, const float* b)
 {
   float part[4] = { 0.0f, 0.0f, 0.0f, 0.0f };

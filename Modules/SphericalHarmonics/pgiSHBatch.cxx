@@ -147,13 +147,8 @@ void AddCapsOfOrder(const CapTables& tables, int count, const float* theta, cons
   constexpr int n2 = order * order;
   const int rows = tables.GetResolution(), last = rows - 1;
   const int tableOrder = tables.GetOrder();
-#if HWY_TARGET == HWY_SCALAR
   const float* table = tables.GetLogTableFloat().data();
-#else
-  const hn::Repartition<std::uint64_t, D> du;
-  const hn::Repartition<std::int64_t, D> dw;
-  const hn::Half<decltype(di)> dh;
-  const std::uint64_t* pairs = tables.GetLogPairTable().data();
+#if HWY_TARGET != HWY_SCALAR
   const float* bands = tables.GetLogBandTable().data();
   const int bandStride = tables.GetLogBandStride();
 #endif
@@ -181,6 +176,17 @@ void AddCapsOfOrder(const CapTables& tables, int count, const float* theta, cons
       row = hn::Min(row, hn::Set(di, last - 1));
       const V t = hn::Sub(u, hn::ConvertTo(d, row));
       Lane zh[order];
+      // Band l's value between the lanes' rows r0 and r1, times its ratio;
+      // zero in skipped lanes.
+      const auto interpolate = [&](int l, V r0, V r1)
+      {
+        V z = hn::MulAdd(hn::Sub(r1, r0), t, r0);
+        if (ratios)
+        {
+          z = hn::Mul(z, hn::Set(d, ratios[b * order + l]));
+        }
+        return Lane(hn::IfThenElseZero(keep, z));
+      };
 #if HWY_TARGET != HWY_SCALAR
       // Neighbouring receivers see a blocker at nearly one angle: when the
       // lanes' rows fit in one vector from the lowest, the rows are loaded
@@ -191,19 +197,13 @@ void AddCapsOfOrder(const CapTables& tables, int count, const float* theta, cons
       const int high = hn::GetLane(hn::MaxOfLanes(di, hn::IfThenElseZero(keepRow, row)));
       if (high - low < lanes)
       {
-        const auto offset = hn::IfThenElseZero(keepRow, hn::Sub(row, hn::Set(di, low)));
-        const auto at = hn::IndicesFromVec(d, offset);
+        const auto at =
+          hn::IndicesFromVec(d, hn::IfThenElseZero(keepRow, hn::Sub(row, hn::Set(di, low))));
         for (int l = 0; l < order; ++l)
         {
           const float* band = bands + l * bandStride + low;
-          const V r0 = hn::TableLookupLanes(hn::LoadU(d, band), at);
-          const V r1 = hn::TableLookupLanes(hn::LoadU(d, band + 1), at);
-          V z = hn::MulAdd(hn::Sub(r1, r0), t, r0);
-          if (ratios)
-          {
-            z = hn::Mul(z, hn::Set(d, ratios[b * order + l]));
-          }
-          zh[l] = Lane(hn::IfThenElseZero(keep, z));
+          zh[l] = interpolate(l, hn::TableLookupLanes(hn::LoadU(d, band), at),
+            hn::TableLookupLanes(hn::LoadU(d, band + 1), at));
         }
       }
       else
@@ -213,25 +213,8 @@ void AddCapsOfOrder(const CapTables& tables, int count, const float* theta, cons
         for (int l = 0; l < order; ++l)
         {
           const auto at = hn::Add(base, hn::Set(di, l));
-#if HWY_TARGET == HWY_SCALAR
-          const V r0 = hn::GatherIndex(d, table, at);
-          const V r1 = hn::GatherIndex(d, table, hn::Add(at, hn::Set(di, tableOrder)));
-#else
-          // Both ends of each lane's interval in one 64-bit element: half the
-          // gathered elements of two 32-bit gathers, the same floats.
-          const V lo =
-            hn::BitCast(d, hn::GatherIndex(du, pairs, hn::PromoteTo(dw, hn::LowerHalf(dh, at))));
-          const V hi =
-            hn::BitCast(d, hn::GatherIndex(du, pairs, hn::PromoteTo(dw, hn::UpperHalf(dh, at))));
-          const V r0 = hn::ConcatEven(d, hi, lo);
-          const V r1 = hn::ConcatOdd(d, hi, lo);
-#endif
-          V z = hn::MulAdd(hn::Sub(r1, r0), t, r0);
-          if (ratios)
-          {
-            z = hn::Mul(z, hn::Set(d, ratios[b * order + l]));
-          }
-          zh[l] = Lane(hn::IfThenElseZero(keep, z));
+          zh[l] = interpolate(l, hn::GatherIndex(d, table, at),
+            hn::GatherIndex(d, table, hn::Add(at, hn::Set(di, tableOrder))));
         }
       }
       // Skipped lanes may hold any direction: zero it, so y stays finite.
@@ -454,7 +437,7 @@ void GuardBoundsImpl(int order, const float* g, float tolerance, float* outside)
   }
 }
 
-// Zeros the lanes whose finite is 0.// Zeros the lanes whose finite is 0.
+// Zeros the lanes whose finite is 0.
 void ZeroLanesImpl(int n2, const float* finite, float* g)
 {
   const D d;

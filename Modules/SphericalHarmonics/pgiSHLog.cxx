@@ -27,6 +27,25 @@ double LogRatio(double x)
   return std::log(x) / d;
 }
 
+// Log's and LogZonal's input checks; out (count values) zeroed first.
+Status CheckInput(int order, const double* in, int count, const LogOptions& options, double* out)
+{
+  if (order < 1 || order > MaxOrder)
+  {
+    return Status::InvalidOrder;
+  }
+  Fill(out, count, 0.0);
+  if (!AllFinite(in, count))
+  {
+    return Status::NonFiniteInput;
+  }
+  if (!(options.RelativeClip >= 0.0) || !(options.AbsoluteFloor > 0.0))
+  {
+    return Status::InvalidArgument;
+  }
+  return Status::Ok;
+}
+
 // log(g) = R q'(max(D, floor)) R^T (g - 1) from M_g's eigensystem; g's first
 // coefficient is its DC (the constant 1 is sqrt(4 pi) there).
 Status ClippedLog(const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eig, double floor,
@@ -54,19 +73,11 @@ Status ClippedLog(const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eig, dou
 
 Status Log(int order, const double* g, double* f, const LogOptions& options)
 {
-  if (order < 1 || order > MaxOrder)
-  {
-    return Status::InvalidOrder;
-  }
   const int n2 = NumCoefficients(order);
-  Fill(f, n2, 0.0);
-  if (!AllFinite(g, n2))
+  const Status input = CheckInput(order, g, n2, options, f);
+  if (input != Status::Ok)
   {
-    return Status::NonFiniteInput;
-  }
-  if (!(options.RelativeClip >= 0.0) || !(options.AbsoluteFloor > 0.0))
-  {
-    return Status::InvalidArgument;
+    return input;
   }
   Eigen::MatrixXd m(n2, n2);
   TripleProduct::Get(order).ProductMatrix(g, m.data()); // symmetric: layout is moot
@@ -82,18 +93,10 @@ Status Log(int order, const double* g, double* f, const LogOptions& options)
 
 Status LogZonal(int order, const double* zh, double* logZh, const LogOptions& options)
 {
-  if (order < 1 || order > MaxOrder)
+  const Status input = CheckInput(order, zh, order, options, logZh);
+  if (input != Status::Ok)
   {
-    return Status::InvalidOrder;
-  }
-  Fill(logZh, order, 0.0);
-  if (!AllFinite(zh, order))
-  {
-    return Status::NonFiniteInput;
-  }
-  if (!(options.RelativeClip >= 0.0) || !(options.AbsoluteFloor > 0.0))
-  {
-    return Status::InvalidArgument;
+    return input;
   }
   const int n2 = NumCoefficients(order);
   double g[MaxCoefficients];

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -65,16 +64,6 @@ CapTables::CapTables(int order, int resolution, const LogOptions& log)
     for (int i = 0; i < stride; ++i)
     {
       this->LogBands[l * stride + i] = this->LogF[std::min(i, resolution - 1) * order + l];
-    }
-  }
-  this->LogPairs.resize(this->LogF.size());
-  for (int i = 0; i < resolution; ++i)
-  {
-    const int next = std::min(i + 1, resolution - 1);
-    for (int l = 0; l < order; ++l)
-    {
-      const float ends[2] = { this->LogF[i * order + l], this->LogF[next * order + l] };
-      std::memcpy(&this->LogPairs[i * order + l], ends, sizeof(ends));
     }
   }
 

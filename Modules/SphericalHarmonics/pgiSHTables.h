@@ -19,7 +19,6 @@
 #include "pgiSH.h"
 #include "pgiSHLog.h"
 
-#include <cstdint>
 #include <vector>
 
 namespace proxygi
@@ -83,10 +82,6 @@ public:
   /// The float log table the lookups read, and theta's scale to its rows
   /// (the batched kernels gather from it).
   const std::vector<float>& GetLogTableFloat() const { return this->LogF; }
-  /// The same floats paired for one 64-bit gather per band: entry
-  /// i * Order + l holds row i's band l in its low half and row i + 1's in
-  /// its high half (the last row repeats), both ends of a lane's interval.
-  const std::vector<std::uint64_t>& GetLogPairTable() const { return this->LogPairs; }
   /// The same floats band by band: band l's rows start at l * BandStride and
   /// run on past the last row (repeated) far enough for a vector load from
   /// any row, so lanes whose rows lie close take theirs by permutation.
@@ -106,7 +101,6 @@ private:
   double OLMaxNorm;
   std::vector<double> Visibility, LogD, OLA, OLB;
   std::vector<float> VisibilityF, LogF, LogBands;
-  std::vector<std::uint64_t> LogPairs;
 };
 
 template <typename T, typename Table>
