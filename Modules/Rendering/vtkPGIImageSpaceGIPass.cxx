@@ -5,6 +5,7 @@
 #include "pgiISLibrary.h"
 #include "pgiISReceiverDownsampleFS.h"
 #include "pgiISReceiverFS.h"
+#include "pgiISRestoreDepthFS.h"
 #include "pgiISShadowedLightFS.h"
 #include "pgiISSplatIndirectFS.h"
 #include "pgiISSplatShadowFS.h"
@@ -207,6 +208,8 @@ struct vtkPGIImageSpaceGIPass::Internals
   int Width = 0, Height = 0, LowWidth = 0, LowHeight = 0, Scale = 0, Targets = 0;
 
   std::unique_ptr<vtkOpenGLQuadHelper> Downsample, Exp, Light, Upsample;
+  // The Exact fallback's second stage and the depth put back after it.
+  std::unique_ptr<vtkOpenGLQuadHelper> UpsampleExact, RestoreDepth;
   int ProgramOrder = 0;
   int ProgramFallback = -1;
   std::string SplatVS, SplatFS, SplatIndirectVS, SplatIndirectFS;
@@ -526,6 +529,8 @@ void vtkPGIImageSpaceGIPass::ReleaseGraphicsResources(vtkWindow* w)
   g.Exp.reset();
   g.Light.reset();
   g.Upsample.reset();
+  g.UpsampleExact.reset();
+  g.RestoreDepth.reset();
   g.ProgramOrder = 0;
   if (g.ProxyAlbedo)
   {
@@ -850,9 +855,19 @@ bool vtkPGIImageSpaceGIPass::BuildPrograms(vtkOpenGLRenderWindow* window)
       fs, "//PGI::Input::Dec", SamplerDeclarations("pgiLit", 3 * rows + 3));
     vtkShaderProgram::Substitute(
       fs, "//PGI::Input::Impl", InputsTo("v", "pgiLit", "s", 3 * rows + 3), true);
-    vtkShaderProgram::Substitute(
-      fs, "PGI_FALLBACK_EXACT", this->Fallback == ExactFallback ? "1" : "0", true);
-    g.Upsample.reset(new vtkOpenGLQuadHelper(window, quadVS.c_str(), fs.c_str(), ""));
+    const bool exact = this->Fallback == ExactFallback;
+    std::string stage = fs;
+    vtkShaderProgram::Substitute(stage, "PGI_UPSAMPLE_STAGE", exact ? "1" : "0", true);
+    g.Upsample.reset(new vtkOpenGLQuadHelper(window, quadVS.c_str(), stage.c_str(), ""));
+    g.UpsampleExact.reset();
+    g.RestoreDepth.reset();
+    if (exact)
+    {
+      vtkShaderProgram::Substitute(fs, "PGI_UPSAMPLE_STAGE", "2", true);
+      g.UpsampleExact.reset(new vtkOpenGLQuadHelper(window, quadVS.c_str(), fs.c_str(), ""));
+      g.RestoreDepth.reset(
+        new vtkOpenGLQuadHelper(window, quadVS.c_str(), pgiISRestoreDepthFS, ""));
+    }
     g.SplatVS = pgiISSplatVS;
     vtkShaderProgram::Substitute(g.SplatVS, "//PGI::Splat::Defines", "");
     g.SplatFS = pgiISSplatShadowFS;
@@ -866,9 +881,10 @@ bool vtkPGIImageSpaceGIPass::BuildPrograms(vtkOpenGLRenderWindow* window)
     g.ProgramOrder = order;
     g.ProgramFallback = this->Fallback;
   }
-  for (auto* q : { g.Downsample.get(), g.Exp.get(), g.Light.get(), g.Upsample.get() })
+  for (auto* q : { g.Downsample.get(), g.Exp.get(), g.Light.get(), g.Upsample.get(),
+         g.UpsampleExact.get(), g.RestoreDepth.get() })
   {
-    if (!q->Program || !q->Program->GetCompiled())
+    if (q && (!q->Program || !q->Program->GetCompiled()))
     {
       vtkErrorMacro("An image-space GI shader did not compile.");
       g.ProgramOrder = 0;
@@ -1060,7 +1076,10 @@ void vtkPGIImageSpaceGIPass::ShadeReceiverBuffer(vtkOpenGLRenderWindow* window)
   g.FBO->RemoveColorAttachments(g.LightTargets);
 }
 
-// 4. Upsampling and shading into the renderer's framebuffer.
+// 4. Upsampling and shading into the renderer's framebuffer. With the Exact
+// fallback in three draws: the upsampling marks the pixels no sample matches
+// (depth = the quad's), the fallback shades the marked ones (depth test
+// EQUAL, before its shader runs), and the scene's depth goes back.
 void vtkPGIImageSpaceGIPass::Upsample(vtkOpenGLRenderWindow* window)
 {
   Internals& g = *this->GPU;
@@ -1070,41 +1089,69 @@ void vtkPGIImageSpaceGIPass::Upsample(vtkOpenGLRenderWindow* window)
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
-  vtkShaderProgram* program = g.Upsample->Program;
-  window->GetShaderCache()->ReadyShaderProgram(program);
-  g.Resources.Bind(program);
-  this->SetIndirectUniforms(program);
   const bool albedoBound = g.Indirect && g.ProxyAlbedo;
   if (albedoBound)
   {
     g.ProxyAlbedo->Activate();
-    program->SetUniformi("pgiProxyAlbedo", g.ProxyAlbedo->GetTextureUnit());
   }
   vtkTextureObject* inputs[] = { g.GColor, g.GPosition, g.GNormal, g.GAlbedo, g.GDepth, g.RPosition,
     g.RNormal };
   const char* names[] = { "pgiGColor", "pgiGPosition", "pgiGNormal", "pgiGAlbedo", "pgiGDepth",
     "pgiReceiverPosition", "pgiReceiverNormal" };
-  for (int k = 0; k < 7; ++k)
+  for (vtkTextureObject* input : inputs)
   {
-    inputs[k]->Activate();
-    program->SetUniformi(names[k], inputs[k]->GetTextureUnit());
+    input->Activate();
   }
   for (int k = 0; k < g.LightTargets; ++k)
   {
     g.Lit[k]->Activate();
-    program->SetUniformi(("pgiLit" + std::to_string(k)).c_str(), g.Lit[k]->GetTextureUnit());
   }
-  program->SetUniformi("pgiScale", g.Scale);
-  program->SetUniformi("pgiBilateral", this->Upsampling == Bilateral ? 1 : 0);
-  program->SetUniformi("pgiShadows", g.Shadows ? 1 : 0);
-  program->SetUniformf("pgiDepthEpsilon", static_cast<float>(this->DepthEpsilon));
-  program->SetUniformf("pgiNormalPower", static_cast<float>(this->NormalPower));
-  program->SetUniformf("pgiFallbackThreshold", static_cast<float>(this->FallbackThreshold));
-  program->SetUniformMatrix4x4("pgiVCToWC", g.VCWC);
-  program->SetUniformMatrix3x3("pgiNormalVCToWC", g.NVCWC);
-  program->SetUniformf("pgiExposure", static_cast<float>(this->Exposure));
-  program->SetUniformi("pgiSRGBOutput", this->SRGBOutput ? 1 : 0);
-  g.Upsample->Render();
+  const auto draw = [&](vtkOpenGLQuadHelper& quad)
+  {
+    vtkShaderProgram* program = quad.Program;
+    window->GetShaderCache()->ReadyShaderProgram(program);
+    g.Resources.Bind(program);
+    this->SetIndirectUniforms(program);
+    if (albedoBound)
+    {
+      program->SetUniformi("pgiProxyAlbedo", g.ProxyAlbedo->GetTextureUnit());
+    }
+    for (int k = 0; k < 7; ++k)
+    {
+      program->SetUniformi(names[k], inputs[k]->GetTextureUnit());
+    }
+    for (int k = 0; k < g.LightTargets; ++k)
+    {
+      program->SetUniformi(("pgiLit" + std::to_string(k)).c_str(), g.Lit[k]->GetTextureUnit());
+    }
+    program->SetUniformi("pgiScale", g.Scale);
+    program->SetUniformi("pgiBilateral", this->Upsampling == Bilateral ? 1 : 0);
+    program->SetUniformi("pgiShadows", g.Shadows ? 1 : 0);
+    program->SetUniformf("pgiDepthEpsilon", static_cast<float>(this->DepthEpsilon));
+    program->SetUniformf("pgiNormalPower", static_cast<float>(this->NormalPower));
+    program->SetUniformf("pgiFallbackThreshold", static_cast<float>(this->FallbackThreshold));
+    program->SetUniformMatrix4x4("pgiVCToWC", g.VCWC);
+    program->SetUniformMatrix3x3("pgiNormalVCToWC", g.NVCWC);
+    program->SetUniformf("pgiExposure", static_cast<float>(this->Exposure));
+    program->SetUniformi("pgiSRGBOutput", this->SRGBOutput ? 1 : 0);
+    quad.Render();
+    g.Resources.Unbind();
+  };
+  draw(*g.Upsample);
+  if (g.UpsampleExact && g.Shadows)
+  {
+    ostate->vtkglDepthFunc(GL_EQUAL);
+    ostate->vtkglDepthMask(GL_FALSE);
+    draw(*g.UpsampleExact);
+    ostate->vtkglDepthFunc(GL_ALWAYS);
+    ostate->vtkglDepthMask(GL_TRUE);
+    vtkShaderProgram* restore = g.RestoreDepth->Program;
+    window->GetShaderCache()->ReadyShaderProgram(restore);
+    restore->SetUniformi("pgiGDepth", g.GDepth->GetTextureUnit());
+    vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+    ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    g.RestoreDepth->Render();
+  }
   if (albedoBound)
   {
     g.ProxyAlbedo->Deactivate();
@@ -1113,11 +1160,10 @@ void vtkPGIImageSpaceGIPass::Upsample(vtkOpenGLRenderWindow* window)
   {
     g.Lit[k]->Deactivate();
   }
-  for (int k = 0; k < 7; ++k)
+  for (vtkTextureObject* input : inputs)
   {
-    inputs[k]->Deactivate();
+    input->Deactivate();
   }
-  g.Resources.Unbind();
   ostate->vtkglDepthFunc(GL_LEQUAL);
 }
 

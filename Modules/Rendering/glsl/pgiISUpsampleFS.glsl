@@ -9,12 +9,21 @@
 // max(0, N.N_i)^pgiNormalPower (Sloan et al. 2007, eq. 11, with the depth
 // difference measured to the pixel's tangent plane, relative to its depth,
 // so slanted planes interpolate evenly). Where no sample matches (weights
-// below pgiFallbackThreshold) the pixel is shaded from scratch over all
-// proxies (PGI_FALLBACK_EXACT 1: pgiVisibility, the per-vertex kernel) or
-// takes the best-matching sample as it is (0). Then H(N) shading with
-// the pixel's own normal, plus the interpolated one-bounce light (shaded
-// at the receiver-buffer samples), times albedo, exposure, sRGB; pixels
-// without a receiver keep the colour VTK rendered.
+// below pgiFallbackThreshold) the pixel takes the best-matching sample as
+// it is, or is shaded from scratch over all proxies (the Exact fallback:
+// pgiVisibility, the per-vertex kernel). Then H(N) shading with the
+// pixel's own normal, plus the interpolated one-bounce light (shaded at the
+// receiver-buffer samples), times albedo, exposure, sRGB; pixels without a
+// receiver keep the colour VTK rendered.
+//
+// PGI_UPSAMPLE_STAGE: 0, one pass with the nearest-sample fallback; with
+// the Exact fallback, 1 upsamples and marks the pixels no sample matches
+// (their depth set to the quad's own), and 2 shades only the marked ones
+// from scratch: drawn with the depth test EQUAL and no depth writes, the
+// test runs before the shader, so the fallback's long shader costs only
+// where pixels take it (a branch in one shader costs its whole length on
+// SIMD rasterisers such as llvmpipe). pgiISRestoreDepthFS puts the depth
+// back.
 
 in vec2 texCoord;
 uniform sampler2D pgiGColor;
@@ -41,13 +50,37 @@ uniform int pgiSRGBOutput;
 
 // pgiEncodeSRGB: in the library (pgiSRGB.glsl).
 
+#if PGI_UPSAMPLE_STAGE == 2
+// A pixel from scratch: its own visibility and indirect light.
+vec3 pgiShadeExact(vec3 p, vec3 n)
+{
+  float g[PGI_SH_N2];
+  int used = pgiVisibility(p, n, g);
+  vec3 rgb = used > 0 ? pgiShade(n, g) : max(pgiShadeUnshadowed(n), vec3(0.0));
+  if (pgiIndirect != 0)
+  {
+    vec4 sum = vec4(0.0);
+    for (int s = 0; s < pgiNumProxies; ++s)
+    {
+      ivec2 at = ivec2(s % pgiProxyTextureWidth, s / pgiProxyTextureWidth);
+      sum += pgiProxyIndirect(p, n, texelFetch(pgiProxyTexture, at, 0),
+        texelFetch(pgiProxyAlbedo, at, 0).rgb, pgiIndirectExpansion);
+    }
+    rgb += pgiResolveIndirect(p, n, sum, g[0]);
+  }
+  return rgb;
+}
+#endif
+
 void main()
 {
   ivec2 px = ivec2(texCoord * vec2(textureSize(pgiGColor, 0)));
   vec4 color = texelFetch(pgiGColor, px, 0);
   float depth = texelFetch(pgiGDepth, px, 0).r;
   vec4 pv = texelFetch(pgiGPosition, px, 0);
+#if PGI_UPSAMPLE_STAGE != 2
   gl_FragDepth = depth;
+#endif
   if (!(depth < 1.0) || !(pv.w > 0.5))
   {
     gl_FragData[0] = color;
@@ -65,6 +98,9 @@ void main()
   }
   else
   {
+#if PGI_UPSAMPLE_STAGE == 2
+    rgb = pgiShadeExact(p, n);
+#else
     // Sample i of the receiver buffer sits at full-resolution pixel
     // i * scale + scale / 2.
     vec2 q = (vec2(px) - float(pgiScale / 2)) / float(pgiScale);
@@ -131,26 +167,6 @@ void main()
       rgb = pgiShadeShadowedLight(n, lg, PGI_SHADE_ROWS);
       rgb += vec3(c[3 * PGI_SHADE_ROWS], c[3 * PGI_SHADE_ROWS + 1], c[3 * PGI_SHADE_ROWS + 2]) / wsum;
     }
-#if PGI_FALLBACK_EXACT
-    else
-    {
-      // No coarse sample matches: this pixel from scratch.
-      float g[PGI_SH_N2];
-      int used = pgiVisibility(p, n, g);
-      rgb = used > 0 ? pgiShade(n, g) : max(pgiShadeUnshadowed(n), vec3(0.0));
-      if (pgiIndirect != 0)
-      {
-        vec4 sum = vec4(0.0);
-        for (int s = 0; s < pgiNumProxies; ++s)
-        {
-          ivec2 at = ivec2(s % pgiProxyTextureWidth, s / pgiProxyTextureWidth);
-          sum += pgiProxyIndirect(p, n, texelFetch(pgiProxyTexture, at, 0),
-            texelFetch(pgiProxyAlbedo, at, 0).rgb, pgiIndirectExpansion);
-        }
-        rgb += pgiResolveIndirect(p, n, sum, g[0]);
-      }
-    }
-#else
     else if (bestMatch >= 0.0)
     {
       // No sample matches well: the best one as it is (cheap; no per-pixel
@@ -170,6 +186,12 @@ void main()
     {
       rgb = max(pgiShadeUnshadowed(n), vec3(0.0));
     }
+#if PGI_UPSAMPLE_STAGE == 1
+    if (!(wsum > pgiFallbackThreshold))
+    {
+      gl_FragDepth = gl_FragCoord.z; // for stage 2
+    }
+#endif
 #endif
   }
   rgb *= texelFetch(pgiGAlbedo, px, 0).rgb * pgiExposure;

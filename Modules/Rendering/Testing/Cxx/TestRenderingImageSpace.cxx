@@ -108,6 +108,13 @@ Difference Compare(const std::vector<unsigned char>& image,
   }
   return d;
 }
+std::vector<float> GrabDepth(vtkRenderWindow* window)
+{
+  std::vector<float> depth(static_cast<std::size_t>(Size) * Size);
+  window->GetZbufferData(0, 0, Size - 1, Size - 1, depth.data());
+  return depth;
+}
+
 } // namespace
 
 int TestRenderingImageSpace(int argc, char* argv[])
@@ -263,10 +270,51 @@ int TestRenderingImageSpace(int argc, char* argv[])
   pass->SetReceiverScale(8);
   pass->SetFallbackThreshold(1.0);
   window->Render();
-  const Difference exactEverywhere = Compare(Grab(window), full, background);
+  const std::vector<unsigned char> exactImage = Grab(window);
+  const Difference exactEverywhere = Compare(exactImage, full, background);
+  const std::vector<float> exactDepth = GrabDepth(window);
   pass->SetFallback(vtkPGIImageSpaceGIPass::NearestSampleFallback);
   window->Render();
   const Difference nearestEverywhere = Compare(Grab(window), full, background);
+  // The exact fallback marks its pixels in the depth buffer and puts the
+  // scene's depth back: the depths are the one-pass fallback's, bit for bit.
+  const std::vector<float> sceneDepth = GrabDepth(window);
+  int depthsOff = 0, depthsInScene = 0;
+  for (std::size_t i = 0; i < sceneDepth.size(); ++i)
+  {
+    depthsOff += exactDepth[i] != sceneDepth[i] ? 1 : 0;
+    depthsInScene += sceneDepth[i] < 1.0f ? 1 : 0;
+  }
+  std::printf("1/8, fallback everywhere: %d of %zu depths differ from the one-pass fallback's "
+              "(%d in the scene)\n",
+    depthsOff, sceneDepth.size(), depthsInScene);
+  PGI_CHECK(depthsInScene > Size * Size / 2);
+  PGI_BELOW(depthsOff, 1);
+  // Some pixels through the fallback (threshold 0.5, the silhouettes): the
+  // Exact fallback's second stage shades those and leaves the others as
+  // upsampled, so each pixel is either the exact-everywhere one or the
+  // nearest-sample fallback's (which only changes the same pixels), and
+  // both kinds occur.
+  pass->SetFallbackThreshold(0.5);
+  window->Render();
+  const std::vector<unsigned char> upsampled = Grab(window);
+  pass->SetFallback(vtkPGIImageSpaceGIPass::ExactFallback);
+  window->Render();
+  const std::vector<unsigned char> partly = Grab(window);
+  int asUpsampled = 0, asExact = 0, neither = 0;
+  for (std::size_t k = 0; k < partly.size(); k += 3)
+  {
+    const bool likeUpsampled = std::equal(&partly[k], &partly[k] + 3, &upsampled[k]);
+    const bool likeExact = std::equal(&partly[k], &partly[k] + 3, &exactImage[k]);
+    asUpsampled += likeUpsampled && !likeExact ? 1 : 0;
+    asExact += likeExact && !likeUpsampled ? 1 : 0;
+    neither += !likeUpsampled && !likeExact ? 1 : 0;
+  }
+  std::printf("1/8, fallback threshold 0.5: %d pixels as upsampled, %d as exact, %d neither\n",
+    asUpsampled, asExact, neither);
+  PGI_CHECK(asUpsampled > 1000);
+  PGI_CHECK(asExact > 0);
+  PGI_BELOW(neither, 1);
   pass->SetFallback(vtkPGIImageSpaceGIPass::ExactFallback);
   pass->SetFallbackThreshold(1e-3);
   std::printf("1/8, fallback everywhere: exact %.3f%% (max %d), nearest sample %.3f%% (max %d)\n",
