@@ -630,23 +630,38 @@ void ReferenceTracer::OccludedRays(int count, const float* origins, const float*
 {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  for (int i = 0; i < count; ++i)
+  // A call's rays leave one point or its neighbours towards one light or
+  // one hemisphere: packets of 16 share their traversal.
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  constexpr int Width = 16;
+  for (int first = 0; first < count; first += Width)
   {
-    RTCRay ray;
-    ray.org_x = origins[3 * i];
-    ray.org_y = origins[3 * i + 1];
-    ray.org_z = origins[3 * i + 2];
-    ray.dir_x = directions[3 * i];
-    ray.dir_y = directions[3 * i + 1];
-    ray.dir_z = directions[3 * i + 2];
-    ray.tnear = tnear;
-    ray.tfar = lengths ? lengths[i] : std::numeric_limits<float>::infinity();
-    ray.mask = 0xFFFFFFFFu;
-    ray.flags = 0;
-    ray.time = 0.0f;
-    ray.id = 0;
-    rtcOccluded1(this->Impl->Scene, &context, &ray);
-    blocked[i] = ray.tfar < 0.0f ? 1 : 0;
+    const int lanes = std::min(Width, count - first);
+    RTCRay16 packet;
+    int valid[Width];
+    for (int k = 0; k < Width; ++k)
+    {
+      // Idle lanes repeat the first ray (finite values) and stay invalid.
+      const int i = first + (k < lanes ? k : 0);
+      valid[k] = k < lanes ? -1 : 0;
+      packet.org_x[k] = origins[3 * i];
+      packet.org_y[k] = origins[3 * i + 1];
+      packet.org_z[k] = origins[3 * i + 2];
+      packet.dir_x[k] = directions[3 * i];
+      packet.dir_y[k] = directions[3 * i + 1];
+      packet.dir_z[k] = directions[3 * i + 2];
+      packet.tnear[k] = tnear;
+      packet.tfar[k] = lengths ? lengths[i] : std::numeric_limits<float>::infinity();
+      packet.mask[k] = 0xFFFFFFFFu;
+      packet.flags[k] = 0;
+      packet.time[k] = 0.0f;
+      packet.id[k] = 0;
+    }
+    rtcOccluded16(valid, this->Impl->Scene, &context, &packet);
+    for (int k = 0; k < lanes; ++k)
+    {
+      blocked[first + k] = packet.tfar[k] < 0.0f ? 1 : 0;
+    }
   }
   this->RayCounter().fetch_add(static_cast<std::uint64_t>(count), std::memory_order_relaxed);
 }

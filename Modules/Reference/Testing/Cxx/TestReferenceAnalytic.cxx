@@ -6,7 +6,9 @@
 #include "pgiReferenceTracer.h"
 #include "pgiTesting.h"
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 using namespace proxygi;
@@ -126,5 +128,67 @@ int TestReferenceAnalytic(int, char*[])
     std::printf("scale %g: E = %.6f vs %.6f at scale 1\n", scale, a.Direct[0], b.Direct[0]);
     PGI_NEAR(a.Direct[0], b.Direct[0], 1e-3 * b.Direct[0]);
   }
+
+  // OccludedRays (packets of 16, the last one partly idle) against the
+  // closed form: 37 rays from random points above the plane, outside the
+  // sphere, in random directions, unbounded and then with lengths; rays
+  // within 1e-3 of grazing the sphere or ending within 1e-3 of a surface
+  // are left out of the comparison.
+  const int rays = 37;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<float> origins, directions, lengths;
+  while (static_cast<int>(origins.size()) < 3 * rays)
+  {
+    const double o[3] = { 3 * unit(random), 3 * unit(random), 1.5 + 1.4 * unit(random) };
+    double d[3] = { unit(random), unit(random), unit(random) };
+    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double oc[3] = { o[0] - f.Center[0], o[1] - f.Center[1], o[2] - f.Center[2] };
+    if (!(len > 0.1) || oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] < 1.1)
+    {
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      origins.push_back(static_cast<float>(o[c]));
+      directions.push_back(static_cast<float>(d[c] / len));
+    }
+    lengths.push_back(static_cast<float>(2.5 * (unit(random) + 1.0)));
+  }
+  int compared = 0, agree = 0, blocked = 0;
+  for (bool bounded : { false, true })
+  {
+    std::vector<unsigned char> hit(rays, 2);
+    f.Tracer.OccludedRays(rays, origins.data(), directions.data(), 0.0f,
+      bounded ? lengths.data() : nullptr, hit.data());
+    for (int i = 0; i < rays; ++i)
+    {
+      const float* o = &origins[3 * i];
+      const float* d = &directions[3 * i];
+      const double limit = bounded ? lengths[i] : 1e30;
+      // The first surface: the sphere (|o + t d - c| = r) or the plane z = 0.
+      const double oc[3] = { o[0] - f.Center[0], o[1] - f.Center[1], o[2] - f.Center[2] };
+      const double b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+      const double disc = b * b - (oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - 1.0);
+      double first = d[2] < 0.0 ? -o[2] / d[2] : 1e30;
+      if (disc > 0.0 && -b - std::sqrt(disc) > 0.0)
+      {
+        first = std::min(first, -b - std::sqrt(disc));
+      }
+      if (std::fabs(disc) < 1e-3 || (bounded && std::fabs(first - limit) < 1e-3))
+      {
+        continue;
+      }
+      const unsigned char expected = first < limit ? 1 : 0;
+      ++compared;
+      agree += hit[i] == expected ? 1 : 0;
+      blocked += expected;
+    }
+  }
+  std::printf(
+    "OccludedRays: %d of %d rays as the closed form (%d blocked)\n", agree, compared, blocked);
+  PGI_CHECK(compared > 60);
+  PGI_CHECK(blocked > 10 && blocked < compared - 10);
+  PGI_CHECK(agree == compared);
   return pgitest::Result();
 }
