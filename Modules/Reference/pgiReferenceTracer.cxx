@@ -638,7 +638,7 @@ void ReferenceTracer::OccludedRays(int count, const float* origins, const float*
   {
     const int lanes = std::min(Width, count - first);
     RTCRay16 packet;
-    int valid[Width];
+    alignas(64) int valid[Width]; // Embree reads the mask as one aligned vector
     for (int k = 0; k < Width; ++k)
     {
       // Idle lanes repeat the first ray (finite values) and stay invalid.

@@ -47,8 +47,9 @@
  * | NormalPower | 32 | exponent of the bilateral normal weight |
  * | DepthEpsilon | 0.01 | bilateral receiver-plane weight eps / (eps + distance / depth) |
  * | FallbackThreshold | 1e-3 | summed weight below which a pixel takes the fallback |
- * | Fallback | Exact | Exact: shaded from scratch over all proxies; NearestSample: the
- * best-matching sample (cheap on llvmpipe) |
+ * | Fallback | Exact | Exact: shaded from scratch over all proxies (a depth-tested draw
+ * of its own, so it costs only where pixels take it); NearestSample: the best-matching
+ * sample |
  * | Exposure, SRGBOutput | 1, on | display |
  * | MeasurePassTimes | off | glFinish after each pass and wall-clock times (GetPassTime) |
  *
@@ -168,8 +169,8 @@ public:
   vtkSetClampMacro(FallbackThreshold, double, 0.0, 1.0);
   vtkGetMacro(FallbackThreshold, double);
   /// Exact (default): shaded from scratch over all proxies, as the paper's
-  /// robust solution. NearestSample: the best-matching sample as it is; much
-  /// cheaper on CPU rasterisers (llvmpipe pays for untaken branches).
+  /// robust solution, in a draw of its own that a depth test limits to the
+  /// pixels taking it. NearestSample: the best-matching sample as it is.
   vtkSetClampMacro(Fallback, int, NearestSampleFallback, ExactFallback);
   vtkGetMacro(Fallback, int);
   vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
