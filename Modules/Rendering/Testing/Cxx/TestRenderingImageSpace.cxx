@@ -108,6 +108,7 @@ Difference Compare(const std::vector<unsigned char>& image,
   }
   return d;
 }
+
 std::vector<float> GrabDepth(vtkRenderWindow* window)
 {
   std::vector<float> depth(static_cast<std::size_t>(Size) * Size);
@@ -315,7 +316,6 @@ int TestRenderingImageSpace(int argc, char* argv[])
   PGI_CHECK(asUpsampled > 1000);
   PGI_CHECK(asExact > 0);
   PGI_BELOW(neither, 1);
-  pass->SetFallback(vtkPGIImageSpaceGIPass::ExactFallback);
   pass->SetFallbackThreshold(1e-3);
   std::printf("1/8, fallback everywhere: exact %.3f%% (max %d), nearest sample %.3f%% (max %d)\n",
     100 * exactEverywhere.RelativeRMSE, exactEverywhere.Max, 100 * nearestEverywhere.RelativeRMSE,
