@@ -109,6 +109,7 @@ struct Evaluation
   std::string Scene;
   bool HeldOut = false;
   std::vector<double> ErrorRatio, TimeRatio; // predicted / measured per candidate
+  std::vector<Route> Routes;                 // each candidate's
 };
 
 struct Outcome
@@ -144,6 +145,7 @@ void Evaluate(const Model& model, const std::vector<Measurement>& scene, bool he
     {
       e.ErrorRatio.push_back(model.PredictError(k, m.Features) / m.Error);
       e.TimeRatio.push_back(model.PredictSeconds(k, m.Features) / m.Seconds);
+      e.Routes.push_back(m.Settings.Backend);
     }
   }
   evaluations.push_back(e);
@@ -188,10 +190,12 @@ void Evaluate(const Model& model, const std::vector<Measurement>& scene, bool he
       ran = m.Settings == c.Settings ? &m : ran;
     }
     Choice kept = c;
-    if (ran && ran->CheckError > 0.0)
+    // proxygi render checks the CPU filter's choices only.
+    if (ran && ran->CheckError > 0.0 && c.Settings.Backend == Route::Filter)
     {
       SceneFeatures checked = f;
-      const Choice again = Recheck(model, checked, b, c, ran->CheckError, ran->Seconds);
+      const Choice again = Recheck(model, checked, b, c, ran->CheckError, ran->Seconds,
+        [](const Knobs& k) { return k.Backend == Route::Filter; });
       const Measurement* second = nullptr;
       for (const Measurement& m : scene)
       {
@@ -343,6 +347,32 @@ int main(int argc, char* argv[])
     std::exp(Median(heldLogError)), Median(allLogTime), std::exp(Median(allLogTime)),
     Median(heldLogTime), std::exp(Median(heldLogTime)));
   md << summary;
+  if (all.HasRoute(Route::Mapper))
+  {
+    // The same per route: the mapper's error has no bright-light term.
+    for (Route route : { Route::Filter, Route::Mapper })
+    {
+      std::vector<double> logs[4]; // error, time; left out, held out
+      for (const Evaluation& e : evaluations)
+      {
+        for (std::size_t i = 0; i < e.Routes.size(); ++i)
+        {
+          if (e.Routes[i] == route)
+          {
+            logs[e.HeldOut ? 1 : 0].push_back(std::fabs(std::log(e.ErrorRatio[i])));
+            logs[e.HeldOut ? 3 : 2].push_back(std::fabs(std::log(e.TimeRatio[i])));
+          }
+        }
+      }
+      std::snprintf(summary, sizeof(summary),
+        "%s: error x%.2f left out, x%.2f held out; time x%.2f left out, x%.2f held out.\n",
+        route == Route::Mapper ? "The GPU mapper's candidates" : "The CPU filter's candidates",
+        std::exp(Median(logs[0])), std::exp(Median(logs[1])), std::exp(Median(logs[2])),
+        std::exp(Median(logs[3])));
+      md << summary;
+    }
+    md << "\n";
+  }
 
   // The regret.
   md << "The choice per budget (error budgets: the fastest predicted to meet it; time "

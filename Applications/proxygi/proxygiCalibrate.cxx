@@ -2,20 +2,26 @@
 // Every candidate of the knob grid shades every scene given; its time (one
 // filter update over all receivers, best of --repeats) and its error against
 // the cached Embree reference are the measurements the model is fitted on.
+#include "proxygiBackends.h"
 #include "proxygiCommands.h"
 #include "proxygiProgress.h"
 
 #include "pgiAccuracyBudget.h"
+#include "pgiOffscreenWindow.h"
 #include "pgiScene.h"
 #include "pgiSceneSetup.h"
+#include "vtkPGIGIPolyDataMapper.h"
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 #include "vtkPGIOccluder.h"
 
+#include <vtkCamera.h>
 #include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
 #include <vtkSMPTools.h>
 
 #include <algorithm>
@@ -40,9 +46,18 @@ spheres; traced self-visibility or the self-shadow rules; shadowed or
 unshadowed bounce) on each scene ('default' or none: the built-in bunny
 scene) against the Embree reference, fits the cost and error model and
 writes it. Give the file to 'proxygi render --budget-model FILE' or to the
-filter's SetBudgetModelFileName; without one they use the model that ships.
-The times are this machine's, with all its threads.
+filter's and the GPU mappers' SetBudgetModelFileName; without one they use
+the model that ships. The times are this machine's, with all its threads.
 
+  --routes R[,R]      filter (default), mapper, or both: the GPU mapper's
+                      candidates (16 or 64 spheres, shadowed or unshadowed
+                      bounce, --mapper-orders), each timed as a frame that
+                      recomputes GI on this machine's GL renderer, which the
+                      model records
+  --mapper-orders L   the mapper's orders (default 3,4; 6 is its most: on
+                      llvmpipe one of its frames takes 2-9 s)
+  --mapper-renderer N with --fit: the GL renderer the mapper's runs were
+                      timed on (the model's record of it)
   -o FILE             the model (default proxygi-budget-model.txt)
   --measurements CSV  also write every run (scene, features, knobs, time, error)
   --fit CSV[,CSV...]  no measuring: fit the model from measurements written
@@ -127,6 +142,20 @@ int RunCalibrate(const Args& args)
   const std::string cache = Option(args, "--cache", "proxygi-cache");
   const int spp = static_cast<int>(NumberOption(args, "--reference-spp", 1024, ok));
   const bool quick = Flag(args, "--quick");
+  std::vector<std::string> routes;
+  SplitList(Option(args, "--routes", "filter"), routes);
+  const bool filterRoute = std::find(routes.begin(), routes.end(),
+                             budget::RouteName(budget::Route::Filter)) != routes.end();
+  const bool mapperRoute = std::find(routes.begin(), routes.end(),
+                             budget::RouteName(budget::Route::Mapper)) != routes.end();
+  std::string mapperRenderer = Option(args, "--mapper-renderer", "");
+  if (!(filterRoute || mapperRoute) ||
+    std::any_of(routes.begin(), routes.end(),
+      [](const std::string& r) { return r != "filter" && r != "mapper"; }))
+  {
+    vtkLogF(ERROR, "proxygi calibrate: --routes takes filter, mapper or filter,mapper");
+    return 2;
+  }
   const int repeats = static_cast<int>(NumberOption(args, "--repeats", quick ? 1 : 2, ok));
   if (!ok || spp < 16 || repeats < 1)
   {
@@ -172,13 +201,39 @@ int RunCalibrate(const Args& args)
     {
       scenes.push_back(std::string());
     }
-    std::vector<budget::Knobs> grid = budget::DefaultGrid();
+    std::vector<budget::Knobs> grid, mapperGrid;
+    if (filterRoute)
+    {
+      grid = budget::DefaultGrid();
+    }
+    if (mapperRoute)
+    {
+      std::vector<std::string> orders;
+      SplitList(Option(args, "--mapper-orders", "3,4"), orders);
+      for (const budget::Knobs& k : budget::MapperGrid())
+      {
+        if (std::find(orders.begin(), orders.end(), std::to_string(k.Order)) != orders.end())
+        {
+          mapperGrid.push_back(k);
+        }
+      }
+      if (mapperGrid.empty())
+      {
+        vtkLogF(ERROR, "proxygi calibrate: --mapper-orders takes orders of 3, 4, 6");
+        return 2;
+      }
+    }
     if (quick)
     {
-      grid.erase(std::remove_if(grid.begin(), grid.end(),
+      for (auto* g : { &grid, &mapperGrid })
+      {
+        g->erase(std::remove_if(g->begin(), g->end(),
                    [](const budget::Knobs& k) { return k.Order != 4 && k.Order != 6; }),
-        grid.end());
+          g->end());
+      }
     }
+    std::vector<budget::Knobs> all = grid;
+    all.insert(all.end(), mapperGrid.begin(), mapperGrid.end());
     std::ofstream embree;
     if (!embreePath.empty())
     {
@@ -200,7 +255,7 @@ int RunCalibrate(const Args& args)
       std::map<int, SceneProxies> proxies;
       std::map<int, std::vector<vtkSmartPointer<vtkPolyData>>> traced;
       const auto plain = SceneReceivers(loaded);
-      for (const budget::Knobs& k : grid)
+      for (const budget::Knobs& k : all)
       {
         if (!proxies.count(k.Spheres) &&
           !BuildSceneProxies(scene, loaded, k.Spheres, cache, proxies[k.Spheres], error, &progress,
@@ -240,6 +295,20 @@ int RunCalibrate(const Args& args)
         vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
         return 1;
       }
+      const auto record = [&](const budget::Knobs& k, double best, double err, double checkErr)
+      {
+        budget::Measurement m;
+        m.Scene = scene.Name;
+        m.Features = features;
+        m.Features.Spheres = static_cast<double>(proxies[k.Spheres].Leaves);
+        m.Settings = k;
+        m.Seconds = best;
+        m.Error = err;
+        m.CheckError = checkErr;
+        rows.push_back(m);
+        std::printf("  %-70s %7.3f s %6.2f%% (check %.2f%%)\n", k.Describe().c_str(), best,
+          100.0 * err, 100.0 * checkErr);
+      };
       for (const budget::Knobs& k : grid)
       {
         const auto& receivers = k.SelfVisibility > 0 ? traced[k.Order] : plain;
@@ -260,17 +329,67 @@ int RunCalibrate(const Args& args)
           err = RelativeRMSE(shaded, "Radiance", truth, "Radiance");
           checkErr = cheap.empty() ? -1.0 : EstimatedRelativeRMSE(shaded, cheap, CheckSpp, spp);
         }
-        budget::Measurement m;
-        m.Scene = scene.Name;
-        m.Features = features;
-        m.Features.Spheres = static_cast<double>(proxies[k.Spheres].Leaves);
-        m.Settings = k;
-        m.Seconds = best;
-        m.Error = err;
-        m.CheckError = checkErr;
-        rows.push_back(m);
-        std::printf("  %-70s %7.3f s %6.2f%% (check %.2f%%)\n", k.Describe().c_str(), best,
-          100.0 * err, 100.0 * checkErr);
+        record(k, best, err, checkErr);
+      }
+      // The GPU mapper: a fresh window per run; its first frame builds the
+      // shaders and tables, the timed one recomputes GI (as a frame that
+      // changes the scene does).
+      for (const budget::Knobs& k : mapperGrid)
+      {
+        double best = 1e300, err = 0.0, checkErr = -1.0;
+        bool cutShort = false;
+        for (int r = 0; r < repeats && !cutShort; ++r)
+        {
+          vtkNew<vtkPGIGISettings> settings;
+          ConfigureSettings(settings, scene);
+          k.Apply(settings);
+          SetBackendPlaneDefaults(settings, "gpu");
+          vtkNew<vtkRenderer> renderer;
+          const auto mappers =
+            AddGPUMappers(renderer, plain, settings, loaded, proxies[k.Spheres], 1.0);
+          renderer->SetActiveCamera(loaded.Camera);
+          std::string windowPath;
+          vtkSmartPointer<vtkRenderWindow> window = NewOffscreenRenderWindow(&windowPath);
+          if (!window)
+          {
+            vtkLogF(ERROR, "proxygi calibrate: no offscreen OpenGL: %s", windowPath.c_str());
+            return 1;
+          }
+          window->SetSize(scene.Size[0], scene.Size[1]);
+          window->AddRenderer(renderer);
+          window->Render();
+          std::vector<vtkSmartPointer<vtkPolyData>> shaded;
+          if (!ReadBackRadiance(mappers, shaded, error))
+          {
+            vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
+            return 1;
+          }
+          // Past llvmpipe's loop limit the GI pass is cut short (the
+          // status says so): its error would be llvmpipe's, not the route's.
+          for (auto& mapper : mappers)
+          {
+            cutShort =
+              cutShort || mapper->GetGIStatus().find("beyond its loop budget") != std::string::npos;
+          }
+          err = RelativeRMSE(shaded, "Radiance", truth, "Radiance");
+          checkErr = cheap.empty() ? -1.0 : EstimatedRelativeRMSE(shaded, cheap, CheckSpp, spp);
+          for (auto& mapper : mappers)
+          {
+            mapper->AlwaysRecomputeOn();
+          }
+          const auto t0 = Clock::now();
+          window->Render();
+          window->WaitForCompletion();
+          best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+          mapperRenderer = DescribeRenderWindowContext(window);
+        }
+        if (cutShort)
+        {
+          std::printf("  %-70s not measured: llvmpipe's loop limit cuts its GI pass short\n",
+            k.Describe().c_str());
+          continue;
+        }
+        record(k, best, err, checkErr);
       }
       if (embree.is_open())
       {
@@ -307,6 +426,17 @@ int RunCalibrate(const Args& args)
     return 1;
   }
   model.Machine = MachineName();
+  if (model.HasRoute(budget::Route::Mapper))
+  {
+    if (mapperRenderer.empty())
+    {
+      vtkLogF(ERROR,
+        "proxygi calibrate: the measurements hold GPU-mapper runs: give --mapper-renderer, the "
+        "GL renderer they were timed on");
+      return 2;
+    }
+    model.MapperRenderer = mapperRenderer;
+  }
   if (!model.Save(output, error))
   {
     vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
@@ -315,6 +445,10 @@ int RunCalibrate(const Args& args)
   std::printf("model: %zu candidates, %d scenes, error spread x%.2f (log RMS %.3f), on %s\n",
     model.Candidates.size(), model.Scenes, std::exp(model.ErrorSpread), model.ErrorSpread,
     model.Machine.c_str());
+  if (!model.MapperRenderer.empty())
+  {
+    std::printf("model: the GPU mapper's times on %s\n", model.MapperRenderer.c_str());
+  }
   std::printf("wrote %s\n", output.c_str());
   return 0;
 }

@@ -52,8 +52,11 @@ an option a mode has no use for as "note: ... does not apply".
                       meeting both. Either one chooses the order, the bounce's
                       order and model, the spheres and the self-visibility
                       among those the model holds (the knobs given stay as
-                      given), runs the CPU filter and prints the prediction,
-                      what it traded away, and the measured result
+                      given) and, with --mode auto, the route: the CPU filter
+                      or the GPU mapper (the latter where the model's GPU times
+                      are of this kind of GL renderer); --mode vertex or gpu
+                      keeps that route. It prints the prediction, what it
+                      traded away, and the measured result
   --budget-model FILE the model from 'proxygi calibrate' (default: the one
                       that ships, measured on a 2-core machine)
   --check N           check the budget's choice against Embree at N samples

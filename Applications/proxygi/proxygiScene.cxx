@@ -48,6 +48,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -97,6 +98,10 @@ struct RenderOptions
   budget::Model Model;
   budget::SceneFeatures Features;
   std::function<bool(const budget::Knobs&)> Allowed;
+  // The routes a budget may choose (filter, mapper) and the GL renderer
+  // the GPU mapper would run on.
+  std::array<bool, 2> Routes{ { true, false } };
+  std::string Renderer;
   int CheckSpp = 0; // --check: Embree samples per vertex of the check (0: none)
   bool Budgeted() const { return this->Budget.Any(); }
   bool Gpu() const { return this->Mode == "gpu"; }
@@ -137,35 +142,38 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
       "--time seconds or milliseconds (0.2, 0.2s, 200ms)");
     return false;
   }
-  if (o.Budgeted() && o.Mode != "auto" && o.Mode != "vertex")
+  if (o.Budgeted() && o.Mode == "image-space")
   {
     vtkLogF(ERROR,
-      "proxygi render: --error and --time choose the CPU filter's knobs (--mode vertex): the "
-      "budget model has no GPU candidates yet");
+      "proxygi render: --error and --time choose between the CPU filter's and the GPU mapper's "
+      "knobs (--mode auto, vertex or gpu): the image-space pass is not a candidate of the "
+      "budget model");
     return false;
   }
+  std::string gl;
+  if (o.Mode == "auto" || (o.Budgeted() && o.Mode == "gpu"))
+  {
+    vtkSmartPointer<vtkRenderWindow> probe = NewOffscreenRenderWindow();
+    gl = probe ? DescribeRenderWindowContext(probe) : std::string();
+    o.Renderer = gl.empty() ? std::string("none found") : gl;
+  }
+  o.Routes = { o.Mode != "gpu", o.Mode == "gpu" || (o.Budgeted() && o.Mode == "auto") };
   if (o.Budgeted() && o.Mode == "auto")
   {
+    // The choice sets the mode (ChooseForBudget); the filter's defaults
+    // until then.
     o.Mode = "vertex";
-    o.AutoReason = "--error/--time: the budget model's candidates are the CPU filter's";
+    o.AutoReason = "--error/--time: the budget chose the route";
   }
   if (o.Mode == "auto")
   {
     // The fastest route: on a software rasteriser the CPU filter shades
     // several times faster than the GI mapper runs there.
-    vtkSmartPointer<vtkRenderWindow> probe = NewOffscreenRenderWindow();
-    const std::string gl = probe ? DescribeRenderWindowContext(probe) : std::string();
-    std::string lower = gl;
-    std::transform(lower.begin(), lower.end(), lower.begin(),
-      [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    const bool software = lower.find("llvmpipe") != std::string::npos ||
-      lower.find("softpipe") != std::string::npos || lower.find("swrast") != std::string::npos ||
-      lower.find("software") != std::string::npos;
+    const bool software = budget::SoftwareRenderer(gl);
     o.Mode = software ? "vertex" : "gpu";
     o.AutoReason = software
       ? "the GL renderer (" + gl + ") is a software one: the CPU filter shades, GL only draws"
-      : "the GL renderer (" + (gl.empty() ? std::string("none found") : gl) +
-        ") is a hardware one: the GI mapper shades on the GPU";
+      : "the GL renderer (" + o.Renderer + ") is a hardware one: the GI mapper shades on the GPU";
   }
   // The CPU filter's default: order-6 shadows with an order-4 bounce, which
   // costs about what order 4 did (AccuracyTime.md, section 21); the GPU
@@ -337,6 +345,24 @@ bool ChooseForBudget(
       (!indirectOrder || k.IndirectOrder == asGiven.IndirectOrder) &&
       (!hierarchy || k.HierarchyAngle == asGiven.HierarchyAngle);
   };
+  // The GPU mapper's candidates where the model has them, with times of
+  // this kind of renderer (auto); --mode gpu takes them in any case, said.
+  std::string why;
+  const bool mapperTimes = budget::MapperTimesApply(model, o.Renderer, why);
+  if (o.Routes[1] && !o.Routes[0] && !model.HasRoute(budget::Route::Mapper))
+  {
+    vtkLogF(ERROR, "proxygi render: budget with --mode gpu: %s", why.c_str());
+    return false;
+  }
+  if (o.Routes[1] && !mapperTimes)
+  {
+    std::printf(
+      "budget: %s%s\n", o.Routes[0] ? "the CPU filter's candidates only: " : "note: ", why.c_str());
+  }
+  const bool filterRoute = o.Routes[0], mapperRoute = o.Routes[1] && (mapperTimes || !o.Routes[0]);
+  const auto given = o.Allowed;
+  o.Allowed = [=](const budget::Knobs& k)
+  { return (k.Backend == budget::Route::Filter ? filterRoute : mapperRoute) && given(k); };
   const auto& allowed = o.Allowed;
   const budget::Budget& b = o.Budget;
   o.Chosen = budget::Choose(model, features, b, allowed);
@@ -347,6 +373,12 @@ bool ChooseForBudget(
   }
   const budget::Knobs& k = o.Chosen.Settings;
   UseKnobs(k, o);
+  if (filterRoute && mapperRoute)
+  {
+    o.Mode = k.Backend == budget::Route::Mapper ? "gpu" : "vertex";
+    o.AutoReason = std::string("--error/--time: the budget chose the ") +
+      (k.Backend == budget::Route::Mapper ? "GPU mapper" : "CPU filter") + " on " + o.Renderer;
+  }
   std::string asked;
   char text[64];
   if (b.HasError)
@@ -360,9 +392,11 @@ bool ChooseForBudget(
     asked += text;
   }
   std::printf("budget: %s -> %s\n", asked.c_str(), k.Describe().c_str());
-  std::printf("budget: predicted error %.1f%% (x/%.2f), SH shading %.3f s on %s; %s\n",
-    100.0 * o.Chosen.PredictedError, std::exp(model.ErrorSpread), o.Chosen.PredictedSeconds,
-    model.Machine.c_str(), o.Chosen.Reason.c_str());
+  const bool gpu = k.Backend == budget::Route::Mapper;
+  std::printf("budget: predicted error %.1f%% (x/%.2f), %s %.3f s on %s; %s\n",
+    100.0 * o.Chosen.PredictedError, std::exp(model.ErrorSpread), gpu ? "a GI frame" : "SH shading",
+    o.Chosen.PredictedSeconds, (gpu ? model.MapperRenderer : model.Machine).c_str(),
+    o.Chosen.Reason.c_str());
   if (!o.Chosen.Met)
   {
     std::printf("budget: %s\n",
@@ -668,6 +702,11 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       shaded = ShadeOnCPU(receiversIn, settings, scene, loaded, proxies, occluder);
     }
     t2 = Clock::now();
+    if (o.Budgeted() && o.CheckSpp > 0 && o.Gpu())
+    {
+      std::printf("budget check: not run on the GPU mapper's choice (it shades while rendering; "
+                  "the error below is measured)\n");
+    }
     if (!o.Budgeted() || o.CheckSpp <= 0 || !o.Vertex())
     {
       break;
@@ -713,8 +752,12 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       }
       break;
     }
+    // The check re-shades on the CPU filter: it chooses again among its candidates.
+    const auto allowed = o.Allowed;
     const budget::Choice again =
-      budget::Recheck(o.Model, o.Features, o.Budget, o.Chosen, estimated, seconds, o.Allowed);
+      budget::Recheck(o.Model, o.Features, o.Budget, o.Chosen, estimated, seconds,
+        [allowed](const budget::Knobs& k)
+        { return k.Backend == budget::Route::Filter && allowed(k); });
     std::printf("budget check: this scene's errors scaled by %.2f, its times by %.2f\n",
       o.Features.ErrorScale, o.Features.TimeScale);
     if (again.Candidate == o.Chosen.Candidate)
@@ -1027,12 +1070,13 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       100 * RelativeRMSE(shaded, "Radiance", reference, "Radiance"));
     if (o.Budgeted())
     {
+      // The GPU mapper's time is a frame that recomputes GI, as calibrated.
       const double measured = RelativeRMSE(shaded, "Radiance", reference, "Radiance");
+      const double took = o.Gpu() ? giFrame : Seconds(t1, t2);
       std::printf("budget: predicted %.2f%% in %.3f s, measured %.2f%% in %.3f s: %s\n",
-        100.0 * o.Chosen.PredictedError, o.Chosen.PredictedSeconds, 100.0 * measured,
-        Seconds(t1, t2),
+        100.0 * o.Chosen.PredictedError, o.Chosen.PredictedSeconds, 100.0 * measured, took,
         (o.Budget.HasError && measured > o.Budget.Error) ||
-            (o.Budget.HasTime && Seconds(t1, t2) > o.Budget.Seconds)
+            (o.Budget.HasTime && took > o.Budget.Seconds)
           ? "the budget was not met"
           : "within the budget");
     }

@@ -114,6 +114,7 @@ MapperScene::MapperScene(vtkObject* owner)
   , Settings(vtkPGIGISettings::New())
   , Effective(vtkPGIGISettings::New())
   , Bake(vtkPGIGIBake::New())
+  , Budgeted(vtkPGIGISettings::New())
 {
   this->Bake->SetSettings(this->Effective);
 }
@@ -124,6 +125,7 @@ MapperScene::~MapperScene()
   this->Settings->UnRegister(this->Owner);
   this->Effective->Delete();
   this->Bake->Delete();
+  this->Budgeted->Delete();
 }
 
 bool MapperScene::SetLighting(vtkPGILighting* lighting)
@@ -186,11 +188,76 @@ const vtkPGIGISettings::Support& MapperScene::Support()
   return support;
 }
 
-bool MapperScene::PrepareBake(vtkPolyData* proxies)
+bool MapperScene::SetBudget(double errorBudget, double timeBudget, const std::string& modelFile)
+{
+  if (errorBudget == this->ErrorBudget && timeBudget == this->TimeBudget &&
+    modelFile == this->BudgetModelFileName)
+  {
+    return false;
+  }
+  this->ErrorBudget = errorBudget;
+  this->TimeBudget = timeBudget;
+  this->BudgetModelFileName = modelFile;
+  return true;
+}
+
+std::string MapperScene::WithBudget(const std::string& status) const
+{
+  return this->BudgetLine.empty() ? status : status + "; " + this->BudgetLine;
+}
+
+bool MapperScene::PrepareBake(vtkPolyData* proxies, double receivers)
 {
   this->Bake->SetProxies(proxies);
   this->Bake->SetLighting(this->Lighting);
-  return this->Bake->UpdateFor(this->Owner, this->Settings, Support(), this->Notes);
+  vtkPGIGISettings* requested = this->Settings;
+  this->BudgetLine.clear();
+  if (this->ErrorBudget != 0.0 || this->TimeBudget != 0.0)
+  {
+    budget::Budget b;
+    if (this->ErrorBudget != 0.0)
+    {
+      b.SetError(this->ErrorBudget);
+    }
+    if (this->TimeBudget != 0.0)
+    {
+      b.SetSeconds(this->TimeBudget);
+    }
+    // The user's settings stay as set; the budget's knobs go on a copy.
+    vtkNew<vtkPGIGISettings> chosen;
+    chosen->DeepCopy(this->Settings);
+    budget::Choice choice;
+    std::string error;
+    if (this->Planner.Plan(this->BudgetModelFileName, budget::Route::Mapper, proxies, receivers,
+          false, this->Lighting, b, chosen, choice, this->BudgetLine, error))
+    {
+      const char* gl = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+      std::string why;
+      if (gl && !budget::MapperTimesApply(this->Planner.GetModel(), gl, why))
+      {
+        this->BudgetLine += "; its times do not hold here: " + why;
+      }
+      // DeepCopy sets knob by knob: Budgeted changes only with the choice.
+      this->Budgeted->DeepCopy(chosen);
+      if (!choice.Valid && choice.Reason != this->BudgetWarned)
+      {
+        vtkWarningWithObjectMacro(this->Owner, << "Budget: " << choice.Reason << ".");
+      }
+      this->BudgetWarned = choice.Valid ? std::string() : choice.Reason;
+      requested = this->Budgeted;
+      this->BudgetError.clear();
+    }
+    else
+    {
+      if (error != this->BudgetError)
+      {
+        vtkErrorWithObjectMacro(this->Owner, << error << "; the settings as set instead.");
+      }
+      this->BudgetError = error;
+      this->BudgetLine = error + "; the settings as set instead";
+    }
+  }
+  return this->Bake->UpdateFor(this->Owner, requested, Support(), this->Notes);
 }
 
 vtkMTimeType MapperScene::GetMTime(vtkMTimeType ownerTime) const
@@ -211,6 +278,11 @@ void MapperScene::PrintSelf(ostream& os, vtkIndent indent, const VertexGIOptions
   os << indent << "CombineWithVTKLighting: " << options.CombineWithVTKLighting << "\n";
   os << indent << "CaptureVisibility: " << options.CaptureVisibility << "\n";
   os << indent << "AlwaysRecompute: " << options.AlwaysRecompute << "\n";
+  os << indent << "ErrorBudget: " << this->ErrorBudget << "\n";
+  os << indent << "TimeBudget: " << this->TimeBudget << "\n";
+  os << indent << "BudgetModelFileName: "
+     << (this->BudgetModelFileName.empty() ? "(the model that ships)" : this->BudgetModelFileName)
+     << "\n";
 }
 
 VertexGI::VertexGI()

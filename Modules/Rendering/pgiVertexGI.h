@@ -15,6 +15,7 @@
 #define pgiVertexGI_h
 
 #include "ProxyGIRenderingModule.h"
+#include "pgiAccuracyBudget.h" // for budget::Planner
 
 #include "vtkIndent.h"
 #include "vtkPGIGISettings.h"
@@ -87,8 +88,13 @@ public:
   static vtkPolyData* ProxiesOf(vtkAlgorithm* mapper);
   /// What the GPU mappers honour.
   static const vtkPGIGISettings::Support& Support();
-  /// Brings the bake up to date for Support(); false on error.
-  bool PrepareBake(vtkPolyData* proxies);
+  /// Brings the bake up to date for Support() and, with a budget, the
+  /// knobs it chooses for `receivers` points; false on error.
+  bool PrepareBake(vtkPolyData* proxies, double receivers);
+  /// The mappers' SetErrorBudget / SetTimeBudget / SetBudgetModelFileName.
+  bool SetBudget(double errorBudget, double timeBudget, const std::string& modelFile);
+  /// Appends the budget's line (if any) to a status.
+  std::string WithBudget(const std::string& status) const;
   vtkMTimeType GetMTime(vtkMTimeType ownerTime) const;
   void PrintSelf(ostream& os, vtkIndent indent, const VertexGIOptions& options) const;
 
@@ -98,6 +104,12 @@ public:
   vtkPGIGISettings* Effective = nullptr;
   vtkPGIGIBake* Bake = nullptr;
   std::vector<std::string> Notes;
+  /// The accuracy budget (0: none); the settings with its knobs; its line.
+  double ErrorBudget = 0.0, TimeBudget = 0.0;
+  std::string BudgetModelFileName;
+  proxygi::budget::Planner Planner;
+  vtkPGIGISettings* Budgeted = nullptr;
+  std::string BudgetLine, BudgetError, BudgetWarned; // warned once each
 };
 
 class PROXYGIRENDERING_EXPORT VertexGI
@@ -247,6 +259,31 @@ private:
   {                                                                                                \
     this->Scene.RemoveAllBlockerPlanes();                                                          \
     this->Modified();                                                                              \
+  }                                                                                                \
+                                                                                                   \
+  void cls::SetErrorBudget(double fraction)                                                        \
+  {                                                                                                \
+    if (this->Scene.SetBudget(fraction, this->Scene.TimeBudget, this->Scene.BudgetModelFileName))  \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+                                                                                                   \
+  void cls::SetTimeBudget(double seconds)                                                          \
+  {                                                                                                \
+    if (this->Scene.SetBudget(this->Scene.ErrorBudget, seconds, this->Scene.BudgetModelFileName))  \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+                                                                                                   \
+  void cls::SetBudgetModelFileName(const char* fileName)                                           \
+  {                                                                                                \
+    if (this->Scene.SetBudget(                                                                     \
+          this->Scene.ErrorBudget, this->Scene.TimeBudget, fileName ? fileName : ""))              \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
   }                                                                                                \
                                                                                                    \
   void cls::SetExposure(double exposure)                                                           \

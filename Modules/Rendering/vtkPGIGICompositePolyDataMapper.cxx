@@ -4,6 +4,7 @@
 #include "vtk_glew.h"
 
 #include "vtkCompositeMapperHelper2.h"
+#include "vtkDataObject.h"
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLHelper.h"
@@ -146,7 +147,11 @@ vtkCompositeMapperHelper2* vtkPGIGICompositePolyDataMapper::CreateHelper()
 void vtkPGIGICompositePolyDataMapper::Render(vtkRenderer* ren, vtkActor* act)
 {
   // One bake for every helper, brought up to date once per render.
-  this->BakeReady = this->Options.GlobalIllumination && this->Scene.PrepareBake(this->GetProxies());
+  vtkDataObject* input = this->GetInputDataObject(0, 0);
+  const double points =
+    input ? static_cast<double>(input->GetNumberOfElements(vtkDataObject::POINT)) : 0.0;
+  this->BakeReady =
+    this->Options.GlobalIllumination && this->Scene.PrepareBake(this->GetProxies(), points);
   this->Superclass::Render(ren, act);
 }
 
@@ -173,7 +178,7 @@ std::string vtkPGIGICompositePolyDataMapper::GetGIStatus()
       static_cast<vtkPGIGICompositeMapperHelper*>(entry.second)->GI.GetStatus();
     status += (status.empty() ? "" : " | ") + one;
   }
-  return status.empty() ? std::string("GI: nothing drawn yet") : status;
+  return status.empty() ? std::string("GI: nothing drawn yet") : this->Scene.WithBudget(status);
 }
 
 void vtkPGIGICompositePolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)

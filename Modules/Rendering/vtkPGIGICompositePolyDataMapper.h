@@ -82,6 +82,15 @@ public:
   bool GetAlwaysRecompute() const { return this->Options.AlwaysRecompute; }
   vtkBooleanMacro(AlwaysRecompute, bool);
 
+  /// The accuracy budget, as vtkPGIGIPolyDataMapper's (its receivers: every
+  /// block's points).
+  void SetErrorBudget(double fraction);
+  double GetErrorBudget() const { return this->Scene.ErrorBudget; }
+  void SetTimeBudget(double seconds);
+  double GetTimeBudget() const { return this->Scene.TimeBudget; }
+  void SetBudgetModelFileName(const char* fileName);
+  const char* GetBudgetModelFileName() const { return this->Scene.BudgetModelFileName.c_str(); }
+
   vtkMTimeType GetMTime() override;
   void Render(vtkRenderer* ren, vtkActor* act) override;
 

@@ -56,13 +56,15 @@ bool vtkPGIGIPolyDataMapper::UpdateGI(vtkRenderer* ren, vtkActor* act)
       !this->Options.GlobalIllumination ? "GI off: VTK lighting" : "GI: nothing to draw");
     return false;
   }
-  if (!this->Scene.PrepareBake(this->GetProxies()))
+  if (!this->Scene.PrepareBake(this->GetProxies(), static_cast<double>(input->GetNumberOfPoints())))
   {
     return false;
   }
-  return this->GI.Update(this, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()), act,
-    { { input, 0 } }, input->GetNumberOfPoints(), this->Scene.Bake, this->Scene.Notes,
+  const bool gi = this->GI.Update(this, vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()),
+    act, { { input, 0 } }, input->GetNumberOfPoints(), this->Scene.Bake, this->Scene.Notes,
     this->Options);
+  this->GI.SetStatus(this->Scene.WithBudget(this->GI.GetStatus()));
+  return gi;
 }
 
 void vtkPGIGIPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* act)

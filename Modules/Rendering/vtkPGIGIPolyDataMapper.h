@@ -129,6 +129,28 @@ public:
   bool GetAlwaysRecompute() const { return this->Options.AlwaysRecompute; }
   vtkBooleanMacro(AlwaysRecompute, bool);
 
+  /**
+   * Accuracy budget (proxygi::budget, as vtkPGIGlobalIllumination's): with
+   * ErrorBudget > 0 (relative RMSE against the truth, e.g. 0.05) the fastest
+   * of the model's GPU-mapper candidates predicted to meet it, with
+   * TimeBudget > 0 (seconds per GI pass) the most accurate predicted to fit;
+   * both: the fastest meeting both. It chooses the order and the bounce
+   * among the candidates of the proxies' sphere count, on a copy of the
+   * settings (the settings object is left as set), and says the choice,
+   * its prediction and what it traded in GetGIStatus(). The times are those
+   * of the GL renderer the model was calibrated on (`proxygi calibrate
+   * --routes filter,mapper`); the status says when that is another kind of
+   * renderer. 0: no budget (default); negative: a warning, the closest
+   * candidate. BudgetModelFileName: a model from `proxygi calibrate`
+   * (default: the one that ships).
+   */
+  void SetErrorBudget(double fraction);
+  double GetErrorBudget() const { return this->Scene.ErrorBudget; }
+  void SetTimeBudget(double seconds);
+  double GetTimeBudget() const { return this->Scene.TimeBudget; }
+  void SetBudgetModelFileName(const char* fileName);
+  const char* GetBudgetModelFileName() const { return this->Scene.BudgetModelFileName.c_str(); }
+
   vtkMTimeType GetMTime() override;
 
   /**

@@ -6,7 +6,13 @@
 #include "vtkPGIGISettings.h"
 #include "vtkPGILighting.h"
 
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -200,10 +206,16 @@ bool Finite(double v)
 }
 } // namespace
 
+const char* RouteName(Route route)
+{
+  return route == Route::Mapper ? "mapper" : "filter";
+}
+
 std::string Knobs::Describe() const
 {
   std::ostringstream s;
-  s << "order " << this->Order;
+  const bool mapper = this->Backend == Route::Mapper;
+  s << (mapper ? "GPU mapper: " : "") << "order " << this->Order;
   if (this->ShadowedIndirect && this->IndirectOrder > 0 && this->IndirectOrder < this->Order)
   {
     s << " (bounce " << this->IndirectOrder << ")";
@@ -211,7 +223,7 @@ std::string Knobs::Describe() const
   s << ", " << this->Spheres << " spheres, "
     << (this->SelfVisibility > 0 ? "traced self-visibility" : "self-shadow rules") << ", "
     << (this->ShadowedIndirect ? "shadowed" : "unshadowed") << " bounce";
-  if (this->HierarchyAngle != 25.0)
+  if (!mapper && this->HierarchyAngle != 25.0)
   {
     s << ", hierarchy " << this->HierarchyAngle << " deg";
   }
@@ -231,7 +243,8 @@ bool Knobs::operator==(const Knobs& o) const
 {
   return this->Order == o.Order && this->IndirectOrder == o.IndirectOrder &&
     this->Spheres == o.Spheres && this->SelfVisibility == o.SelfVisibility &&
-    this->ShadowedIndirect == o.ShadowedIndirect && this->HierarchyAngle == o.HierarchyAngle;
+    this->ShadowedIndirect == o.ShadowedIndirect && this->HierarchyAngle == o.HierarchyAngle &&
+    this->Backend == o.Backend;
 }
 
 std::vector<Knobs> DefaultGrid()
@@ -253,6 +266,30 @@ std::vector<Knobs> DefaultGrid()
           k.ShadowedIndirect = shadowed;
           grid.push_back(k);
         }
+      }
+    }
+  }
+  return grid;
+}
+
+std::vector<Knobs> MapperGrid()
+{
+  std::vector<Knobs> grid;
+  for (int order : { 3, 4, 6 })
+  {
+    for (int spheres : { 16, 64 })
+    {
+      for (bool shadowed : { false, true })
+      {
+        Knobs k;
+        k.Backend = Route::Mapper;
+        k.Order = order;
+        k.IndirectOrder = 0;
+        k.Spheres = spheres;
+        k.SelfVisibility = 0;
+        k.ShadowedIndirect = shadowed;
+        k.HierarchyAngle = 0.0;
+        grid.push_back(k);
       }
     }
   }
@@ -322,7 +359,7 @@ std::string WriteMeasurements(const std::vector<Measurement>& rows)
   s.precision(9);
   s << "scene,receivers,spheres_total,objects,peak_fraction,directionality,order,indirect_order,"
        "spheres,self_visibility,shadowed_indirect,hierarchy_angle,seconds,error,bright_lights,map,"
-       "check_error\n";
+       "check_error,route\n";
   for (const Measurement& m : rows)
   {
     std::string scene = m.Scene;
@@ -332,7 +369,8 @@ std::string WriteMeasurements(const std::vector<Measurement>& rows)
       << "," << m.Settings.Order << "," << m.Settings.IndirectOrder << "," << m.Settings.Spheres
       << "," << m.Settings.SelfVisibility << "," << (m.Settings.ShadowedIndirect ? 1 : 0) << ","
       << m.Settings.HierarchyAngle << "," << m.Seconds << "," << m.Error << ","
-      << m.Features.BrightLights << "," << m.Features.Map << "," << m.CheckError << "\n";
+      << m.Features.BrightLights << "," << m.Features.Map << "," << m.CheckError << ","
+      << RouteName(m.Settings.Backend) << "\n";
   }
   return s.str();
 }
@@ -357,9 +395,14 @@ bool ReadMeasurements(const std::string& text, std::vector<Measurement>& rows, s
     {
       cells.push_back(cell);
     }
-    if (cells.size() != 17)
+    // 17 fields: written before the route column (the filter's runs).
+    const bool route = cells.size() == 18;
+    if ((cells.size() != 17 && !route) ||
+      (route && cells[17] != RouteName(Route::Filter) && cells[17] != RouteName(Route::Mapper)))
     {
-      error = "line " + std::to_string(number) + ": 17 fields expected";
+      error = "line " + std::to_string(number) +
+        ": 17 or 18 fields expected (the last: " + RouteName(Route::Filter) + " or " +
+        RouteName(Route::Mapper) + ")";
       return false;
     }
     Measurement m;
@@ -382,6 +425,8 @@ bool ReadMeasurements(const std::string& text, std::vector<Measurement>& rows, s
       m.Features.BrightLights = std::stod(cells[14]);
       m.Features.Map = std::stod(cells[15]);
       m.CheckError = std::stod(cells[16]);
+      m.Settings.Backend =
+        route && cells[17] == RouteName(Route::Mapper) ? Route::Mapper : Route::Filter;
     }
     catch (const std::exception&)
     {
@@ -446,10 +491,15 @@ bool Model::Fit(const std::vector<Measurement>& rows, std::string& error)
   }
   // log e = u_k + v_k log2(objects) + w . x: K intercepts, K slopes (how a
   // candidate fares as objects shadow each other: fewer spheres do better
-  // there, more on one object), then the shared weights. The ridge pulls
-  // the slopes towards the shared one.
+  // there, more on one object), then the weights each route's candidates
+  // share (filter, mapper). The ridge pulls the slopes towards the shared one.
   const std::size_t count = fitted.size();
-  const std::size_t unknowns = 2 * count + NumberOfErrorFeatures;
+  const std::size_t unknowns = 2 * count + 2 * NumberOfErrorFeatures;
+  const auto weightsAt = [&](std::size_t k)
+  {
+    return 2 * count +
+      (fitted[k].Settings.Backend == Route::Mapper ? NumberOfErrorFeatures : std::size_t(0));
+  };
   std::vector<std::vector<double>> design;
   std::vector<double> values, weights;
   for (std::size_t r = 0; r < used.size(); ++r)
@@ -458,7 +508,7 @@ bool Model::Fit(const std::vector<Measurement>& rows, std::string& error)
     row[usedCandidate[r]] = 1.0;
     row[count + usedCandidate[r]] = ObjectsTerm(used[r]->Features);
     const auto x = ErrorFeatures(used[r]->Features);
-    std::copy(x.begin(), x.end(), row.begin() + 2 * count);
+    std::copy(x.begin(), x.end(), row.begin() + weightsAt(usedCandidate[r]));
     design.push_back(row);
     values.push_back(std::log(used[r]->Error));
     weights.push_back(1.0);
@@ -480,6 +530,7 @@ bool Model::Fit(const std::vector<Measurement>& rows, std::string& error)
   for (int j = 0; j < NumberOfErrorFeatures; ++j)
   {
     this->ErrorWeights[j] = solution[2 * count + j];
+    this->MapperErrorWeights[j] = solution[2 * count + NumberOfErrorFeatures + j];
   }
   this->Candidates = fitted;
   double sum = 0.0;
@@ -506,7 +557,9 @@ double Model::PredictError(std::size_t k, const SceneFeatures& f) const
     this->Candidates[k].ErrorIntercept + this->Candidates[k].ErrorObjectsSlope * ObjectsTerm(f);
   for (int j = 0; j < NumberOfErrorFeatures; ++j)
   {
-    s += this->ErrorWeights[j] * x[j];
+    s += (this->Candidates[k].Settings.Backend == Route::Mapper ? this->MapperErrorWeights
+                                                                : this->ErrorWeights)[j] *
+      x[j];
   }
   return f.ErrorScale * std::exp(s);
 }
@@ -517,22 +570,36 @@ std::string Model::Write() const
   s.precision(9);
   s << "# ProxyGI accuracy budget model (proxygi calibrate)\n"
     << "version 2\n"
-    << "machine " << (this->Machine.empty() ? "unknown" : this->Machine) << "\n"
-    << "scenes " << this->Scenes << "\n"
+    << "machine " << (this->Machine.empty() ? "unknown" : this->Machine) << "\n";
+  if (!this->MapperRenderer.empty())
+  {
+    s << "mapper_renderer " << this->MapperRenderer << "\n";
+  }
+  s << "scenes " << this->Scenes << "\n"
     << "error_weights";
   for (double w : this->ErrorWeights)
   {
     s << " " << w;
   }
+  if (this->HasRoute(Route::Mapper))
+  {
+    s << "\nmapper_error_weights";
+    for (double w : this->MapperErrorWeights)
+    {
+      s << " " << w;
+    }
+  }
   s << "\nerror_spread " << this->ErrorSpread << "\n";
-  s << "# order indirect_order spheres self_visibility shadowed hierarchy | a m b c d (s) | u v\n";
+  s << "# order indirect_order spheres self_visibility shadowed hierarchy | a m b c d (s) | u v "
+       "| route\n";
   for (const Candidate& c : this->Candidates)
   {
     const Knobs& k = c.Settings;
     s << "candidate " << k.Order << " " << k.IndirectOrder << " " << k.Spheres << " "
       << k.SelfVisibility << " " << (k.ShadowedIndirect ? 1 : 0) << " " << k.HierarchyAngle << " "
       << c.Time[0] << " " << c.Time[1] << " " << c.Time[2] << " " << c.Time[3] << " " << c.Time[4]
-      << " " << c.ErrorIntercept << " " << c.ErrorObjectsSlope << "\n";
+      << " " << c.ErrorIntercept << " " << c.ErrorObjectsSlope << " " << RouteName(k.Backend)
+      << "\n";
   }
   return s.str();
 }
@@ -565,6 +632,10 @@ bool Model::Read(const std::string& text, std::string& error)
     {
       std::getline(words >> std::ws, m.Machine);
     }
+    else if (key == "mapper_renderer")
+    {
+      std::getline(words >> std::ws, m.MapperRenderer);
+    }
     else if (key == "scenes")
     {
       ok = static_cast<bool>(words >> m.Scenes);
@@ -572,6 +643,13 @@ bool Model::Read(const std::string& text, std::string& error)
     else if (key == "error_weights")
     {
       for (double& w : m.ErrorWeights)
+      {
+        ok = ok && static_cast<bool>(words >> w) && Finite(w);
+      }
+    }
+    else if (key == "mapper_error_weights")
+    {
+      for (double& w : m.MapperErrorWeights)
       {
         ok = ok && static_cast<bool>(words >> w) && Finite(w);
       }
@@ -592,6 +670,14 @@ bool Model::Read(const std::string& text, std::string& error)
         std::all_of(c.Time.begin(), c.Time.end(), [](double t) { return t >= 0.0 && Finite(t); }) &&
         Finite(c.ErrorIntercept) && Finite(c.ErrorObjectsSlope);
       c.Settings.ShadowedIndirect = shadowed != 0;
+      // Without a route word: a filter candidate (models written before).
+      std::string route;
+      if (ok && words >> route)
+      {
+        ok = route == RouteName(Route::Filter) ||
+          (route == RouteName(Route::Mapper) && c.Settings.Order <= 6);
+        c.Settings.Backend = route == RouteName(Route::Mapper) ? Route::Mapper : Route::Filter;
+      }
       m.Candidates.push_back(c);
     }
     else
@@ -636,6 +722,12 @@ bool Model::Load(const std::string& path, std::string& error)
   std::stringstream text;
   text << in.rdbuf();
   return this->Read(text.str(), error) || (error = path + ": " + error, false);
+}
+
+bool Model::HasRoute(Route route) const
+{
+  return std::any_of(this->Candidates.begin(), this->Candidates.end(),
+    [route](const Candidate& c) { return c.Settings.Backend == route; });
 }
 
 const Model& Model::Default()
@@ -836,6 +928,143 @@ bool ParseScaled(const std::string& text,
   }
 }
 } // namespace
+
+bool SoftwareRenderer(const std::string& renderer)
+{
+  std::string lower = renderer;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return lower.find("llvmpipe") != std::string::npos ||
+    lower.find("softpipe") != std::string::npos || lower.find("swrast") != std::string::npos ||
+    lower.find("software") != std::string::npos;
+}
+
+bool MapperTimesApply(const Model& model, const std::string& renderer, std::string& why)
+{
+  if (!model.HasRoute(Route::Mapper))
+  {
+    why = "the budget model has no GPU-mapper candidates ('proxygi calibrate --routes "
+          "filter,mapper' measures them)";
+    return false;
+  }
+  if (SoftwareRenderer(model.MapperRenderer) != SoftwareRenderer(renderer))
+  {
+    why = "the budget model's GPU-mapper times were measured on " +
+      (model.MapperRenderer.empty() ? std::string("an unnamed renderer") : model.MapperRenderer) +
+      ", not on this kind of renderer (" + renderer +
+      "): 'proxygi calibrate --routes filter,mapper' measures them here";
+    return false;
+  }
+  why.clear();
+  return true;
+}
+
+bool Planner::Plan(const std::string& modelFile, Route route, vtkPolyData* proxies,
+  double receivers, bool tracedSelf, vtkPGILighting* lighting, const Budget& budget,
+  vtkPGIGISettings* settings, Choice& choice, std::string& line, std::string& error)
+{
+  if (!this->Loaded || this->FileName != modelFile)
+  {
+    this->Used = Model::Default();
+    if (!modelFile.empty() && !this->Used.Load(modelFile, error))
+    {
+      this->Loaded = false;
+      error = "Budget model: " + error;
+      return false;
+    }
+    this->FileName = modelFile;
+    this->Loaded = true;
+  }
+  SceneFeatures features;
+  features.Receivers = receivers;
+  // Spheres per object from the leaves (Level 0, or all without levels).
+  vtkDataArray* level = proxies ? proxies->GetPointData()->GetArray("Level") : nullptr;
+  vtkDataArray* object = proxies ? proxies->GetPointData()->GetArray("ObjectId") : nullptr;
+  std::set<long long> objects;
+  double leaves = 0.0;
+  for (vtkIdType i = 0; proxies && i < proxies->GetNumberOfPoints(); ++i)
+  {
+    if (!level || level->GetComponent(i, 0) == 0.0)
+    {
+      leaves += 1.0;
+      objects.insert(object ? static_cast<long long>(object->GetComponent(i, 0)) : 0);
+    }
+  }
+  features.Objects = std::max<double>(1.0, static_cast<double>(objects.size()));
+  features.Spheres = leaves;
+  vtkImageData* image = lighting ? lighting->GetEnvironmentImage() : nullptr;
+  const vtkMTimeType lightTime =
+    !lighting ? 0 : std::max(lighting->GetMTime(), image ? image->GetMTime() : vtkMTimeType(0));
+  if (!this->LightKnown || this->Light != lighting || this->LightTime != lightTime)
+  {
+    // No lighting: the consumers' uniform white sky.
+    if (!lighting)
+    {
+      this->LightFeatures.SetLight(static_cast<const EnvironmentMap*>(nullptr));
+    }
+    else if (!this->LightFeatures.SetLight(lighting, error))
+    {
+      this->LightKnown = false;
+      error = "Budget: " + error;
+      return false;
+    }
+    this->Light = lighting;
+    this->LightTime = lightTime;
+    this->LightKnown = true;
+  }
+  features.PeakFraction = this->LightFeatures.PeakFraction;
+  features.Directionality = this->LightFeatures.Directionality;
+  features.BrightLights = this->LightFeatures.BrightLights;
+  features.Map = this->LightFeatures.Map;
+  const Model& model = this->Used;
+  const double perObject = leaves / features.Objects;
+  // The route's sphere count nearest to the proxies' (in ratio).
+  double nearest = 0.0;
+  for (const auto& c : model.Candidates)
+  {
+    const double d = std::fabs(std::log(c.Settings.Spheres / std::max(1.0, perObject)));
+    if (c.Settings.Backend == route &&
+      (nearest == 0.0 || d < std::fabs(std::log(nearest / std::max(1.0, perObject)))))
+    {
+      nearest = c.Settings.Spheres;
+    }
+  }
+  const bool selfChosen = route == Route::Filter;
+  choice = Choose(model, features, budget,
+    [&](const Knobs& k)
+    {
+      return k.Backend == route && k.Spheres == nearest &&
+        (!selfChosen || (k.SelfVisibility > 0) == tracedSelf);
+    });
+  // A model without these inputs' candidates (a calibration of other
+  // settings) is used as it is, and the line says so.
+  const bool matched = choice.Candidate >= 0;
+  if (!matched)
+  {
+    choice = Choose(model, features, budget, [&](const Knobs& k) { return k.Backend == route; });
+  }
+  if (choice.Candidate < 0)
+  {
+    error = "Budget: " + choice.Reason + " (route: " + RouteName(route) + ")";
+    return false;
+  }
+  choice.Settings.Apply(settings);
+  std::ostringstream s;
+  s.precision(3);
+  s << "budget: " << choice.Settings.Describe() << " (the proxies' " << perObject
+    << " spheres per object as " << nearest;
+  if (selfChosen)
+  {
+    s << ", self-visibility " << (tracedSelf ? "given" : "by the rules");
+  }
+  s << (matched ? "" : "; the model has no candidate for these inputs: its nearest")
+    << "); predicted error " << 100.0 * choice.PredictedError << "%, "
+    << 1e3 * choice.PredictedSeconds << " ms on "
+    << (route == Route::Mapper ? model.MapperRenderer : model.Machine) << "; "
+    << (choice.Met ? "" : "NOT MET: ") << choice.Reason;
+  line = s.str();
+  return true;
+}
 
 bool ParseErrorBudget(const std::string& text, double& fraction)
 {

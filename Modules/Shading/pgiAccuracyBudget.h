@@ -11,16 +11,22 @@
  *    fitted per candidate by non-negative least squares on relative error;
  *  - error: log e = u_k + v_k log2(objects) + w . x(scene), an intercept
  *    and a slope on the objects per candidate (the ridge pulls the slopes to
- *    0) and weights shared by all, x the scene's light and geometry
- *    (ErrorFeatures).
+ *    0) and weights shared by the candidates of a route, x the scene's light
+ *    and geometry (ErrorFeatures).
  * Both are cheap to evaluate from SceneFeatures, which the CLI and the filter
  * compute before shading. The times belong to the machine they were measured
  * on: `proxygi calibrate` refits them (and the error) on the user's own.
+ *
+ * A candidate runs on one of two routes: the CPU filter
+ * (vtkPGIGlobalIllumination) or the GPU mapper (vtkPGIGIPolyDataMapper,
+ * whose times are those of the GL renderer named in the model). A Planner
+ * chooses for one consumer between its updates.
  */
 #ifndef pgiAccuracyBudget_h
 #define pgiAccuracyBudget_h
 
 #include "ProxyGIShadingModule.h"
+#include "vtkType.h" // for vtkMTimeType
 
 #include <array>
 #include <functional>
@@ -29,6 +35,7 @@
 
 class vtkPGIGISettings;
 class vtkPGILighting;
+class vtkPolyData;
 
 namespace proxygi
 {
@@ -37,9 +44,20 @@ class EnvironmentMap;
 namespace budget
 {
 
-/// One point of the knob grid the budget chooses from (the CPU filter's
-/// route; bright lights taken out and shadowed by rays, occlusion-fitted
-/// proxies, hierarchy cuts as set).
+/// Where a candidate shades: the CPU filter (bright lights taken out and
+/// shadowed by rays, traced self-visibility or the rules, hierarchy cuts) or
+/// the GPU mapper (the map whole in the SH, the rules, every leaf sphere,
+/// the bounce at the shadows' order).
+enum class Route
+{
+  Filter,
+  Mapper
+};
+/// "filter" or "mapper" (the model and CSV files' word).
+PROXYGISHADING_EXPORT const char* RouteName(Route route);
+
+/// One point of the knob grid the budget chooses from (occlusion-fitted
+/// proxies; the rest at the route's defaults).
 struct PROXYGISHADING_EXPORT Knobs
 {
   int Order = 6;
@@ -48,8 +66,10 @@ struct PROXYGISHADING_EXPORT Knobs
   int SelfVisibility = 256; ///< rays per vertex of the meshes' own visibility (0: the rules)
   bool ShadowedIndirect = true;
   double HierarchyAngle = 25.0;
+  Route Backend = Route::Filter;
 
-  /// "order 6 (bounce 4), 64 spheres, traced self, shadowed bounce".
+  /// "order 6 (bounce 4), 64 spheres, traced self, shadowed bounce"; the
+  /// mapper's begin with "GPU mapper: ".
   std::string Describe() const;
   /// Sets order, indirect order and mode, hierarchy angle on `settings`
   /// (sphere count and self-visibility are the caller's: they are upstream).
@@ -61,6 +81,10 @@ struct PROXYGISHADING_EXPORT Knobs
 /// (bounce at min(order, 4)), 16 or 64 spheres, traced self-visibility or the
 /// rules, shadowed or unshadowed bounce.
 PROXYGISHADING_EXPORT std::vector<Knobs> DefaultGrid();
+/// The GPU mapper's grid (`proxygi calibrate --routes mapper`): orders 3, 4,
+/// 6 (its most), 16 or 64 spheres, shadowed or unshadowed bounce; the rules,
+/// no hierarchy cuts, the bounce at the order.
+PROXYGISHADING_EXPORT std::vector<Knobs> MapperGrid();
 
 /// What the model predicts from; cheap to compute before any shading.
 struct PROXYGISHADING_EXPORT SceneFeatures
@@ -124,11 +148,19 @@ public:
   };
   std::vector<Candidate> Candidates;
   std::array<double, NumberOfErrorFeatures> ErrorWeights{ { 0.0, 0.0, 0.0 } };
+  /// The GPU mapper's candidates' own weights: its route keeps a sun in the
+  /// SH, so the light's features weigh otherwise than on the filter's.
+  std::array<double, NumberOfErrorFeatures> MapperErrorWeights{ { 0.0, 0.0, 0.0 } };
   /// RMS of the fit's log-error residuals: exp(+-spread) brackets ~2/3 of
   /// the scenes.
   double ErrorSpread = 0.0;
   std::string Machine; ///< where the times were measured
-  int Scenes = 0;      ///< scenes it was fitted on
+  /// The GL renderer the GPU mapper's times were measured on (empty: the
+  /// model has no mapper candidates).
+  std::string MapperRenderer;
+  int Scenes = 0; ///< scenes it was fitted on
+
+  bool HasRoute(Route route) const;
 
   /// Fits every candidate that has measurements on at least two scenes.
   /// False with a message when none has.
@@ -202,6 +234,48 @@ PROXYGISHADING_EXPORT Choice Recheck(const Model& model, SceneFeatures& scene, c
 /// that do not, the more accurate (error budget) or the faster. True: `a`.
 PROXYGISHADING_EXPORT bool FirstServesBetter(
   const Budget& budget, double errorA, double secondsA, double errorB, double secondsB);
+
+/// Whether a GL renderer's name (GL_RENDERER, or a description holding it)
+/// is a software rasteriser: llvmpipe, softpipe, swrast ("software").
+PROXYGISHADING_EXPORT bool SoftwareRenderer(const std::string& renderer);
+
+/// Whether the model's GPU-mapper times describe `renderer`: the model has
+/// mapper candidates measured on the same kind of renderer (software or
+/// hardware). False with the reason, which says what to run.
+PROXYGISHADING_EXPORT bool MapperTimesApply(
+  const Model& model, const std::string& renderer, std::string& why);
+
+/**
+ * What a consumer (the filter, a GPU mapper) keeps between its updates to
+ * choose its knobs for a budget: the model, read once per file name, and
+ * the light's features, computed once per light (a bright-light search and
+ * a projection of the map), so an update that moves proxies redoes neither.
+ */
+class PROXYGISHADING_EXPORT Planner
+{
+public:
+  /**
+   * Chooses among the `route`'s candidates with the sphere count nearest to
+   * the proxies' leaves per object (and, for the filter, traced
+   * self-visibility as the receivers have it or not) for `receivers` points
+   * (every rank's, under MPI), and sets the choice on `settings`.
+   * `modelFile` empty: the model that ships. `line` is the plan's line.
+   * False with `error` when the model or the light cannot be read.
+   */
+  bool Plan(const std::string& modelFile, Route route, vtkPolyData* proxies, double receivers,
+    bool tracedSelf, vtkPGILighting* lighting, const Budget& budget, vtkPGIGISettings* settings,
+    Choice& choice, std::string& line, std::string& error);
+  const Model& GetModel() const { return this->Used; }
+
+private:
+  std::string FileName;
+  Model Used;
+  bool Loaded = false;
+  SceneFeatures LightFeatures;
+  const vtkPGILighting* Light = nullptr;
+  vtkMTimeType LightTime = 0;
+  bool LightKnown = false;
+};
 
 /// Parses "5%", "0.05", "16ms", "0.2s". False on anything else.
 PROXYGISHADING_EXPORT bool ParseErrorBudget(const std::string& text, double& fraction);

@@ -447,22 +447,9 @@ struct vtkPGIGlobalIllumination::Clusters
   ClusterKey Key;
 };
 
-// The budget model, read once per file name, and the light's terms of the
-// features, computed once per light.
-struct vtkPGIGlobalIllumination::BudgetState
-{
-  std::string FileName;
-  proxygi::budget::Model Model;
-  bool Loaded = false;
-  proxygi::budget::SceneFeatures LightFeatures;
-  const vtkPGILighting* Light = nullptr;
-  vtkMTimeType LightTime = 0;
-  bool LightKnown = false;
-};
-
 vtkPGIGlobalIllumination::vtkPGIGlobalIllumination()
   : Scratch(new ShadeBuffers)
-  , Budget(new BudgetState)
+  , Budget(new proxygi::budget::Planner)
 {
   this->SetNumberOfInputPorts(2);
   this->Settings = vtkPGIGISettings::New();
@@ -655,75 +642,11 @@ std::string vtkPGIGlobalIllumination::CheckReceivers(vtkPolyData* receivers)
 std::string vtkPGIGlobalIllumination::ApplyBudget(vtkPolyData* proxies, vtkPolyData* receivers)
 {
   namespace budget = proxygi::budget;
-  const std::string name = this->BudgetModelFileName ? this->BudgetModelFileName : "";
-  BudgetState& state = *this->Budget;
-  if (!state.Loaded || state.FileName != name)
-  {
-    std::string error;
-    state.Model = budget::Model::Default();
-    if (!name.empty() && !state.Model.Load(name, error))
-    {
-      state.Loaded = false;
-      return "Budget model: " + error + ".";
-    }
-    state.FileName = name;
-    state.Loaded = true;
-  }
-  budget::SceneFeatures features;
   // The frame is every rank's receivers: all ranks choose alike.
-  features.Receivers = proxygi::parallel::Sum(proxygi::parallel::Active(this->Controller),
+  const double points = proxygi::parallel::Sum(proxygi::parallel::Active(this->Controller),
     receivers ? static_cast<double>(receivers->GetNumberOfPoints()) : 0.0);
-  // Spheres per object from the leaves (Level 0, or all without levels).
-  vtkDataArray* level = proxies ? proxies->GetPointData()->GetArray("Level") : nullptr;
-  vtkDataArray* object = proxies ? proxies->GetPointData()->GetArray("ObjectId") : nullptr;
-  std::set<long long> objects;
-  double leaves = 0.0;
-  for (vtkIdType i = 0; proxies && i < proxies->GetNumberOfPoints(); ++i)
-  {
-    if (!level || level->GetComponent(i, 0) == 0.0)
-    {
-      leaves += 1.0;
-      objects.insert(object ? static_cast<long long>(object->GetComponent(i, 0)) : 0);
-    }
-  }
-  features.Objects = std::max<double>(1.0, static_cast<double>(objects.size()));
-  features.Spheres = leaves;
-  // The light's terms (a bright-light search and a projection of the map)
-  // only when the light changed: an update that moves proxies redoes
-  // neither.
-  vtkImageData* image = this->Lighting ? this->Lighting->GetEnvironmentImage() : nullptr;
-  const vtkMTimeType lightTime = !this->Lighting
-    ? 0
-    : std::max(this->Lighting->GetMTime(), image ? image->GetMTime() : vtkMTimeType(0));
-  if (!state.LightKnown || state.Light != this->Lighting || state.LightTime != lightTime)
-  {
-    std::string error;
-    if (!state.LightFeatures.SetLight(this->Lighting, error))
-    {
-      state.LightKnown = false;
-      return "Budget: " + error + ".";
-    }
-    state.Light = this->Lighting;
-    state.LightTime = lightTime;
-    state.LightKnown = true;
-  }
-  features.PeakFraction = state.LightFeatures.PeakFraction;
-  features.Directionality = state.LightFeatures.Directionality;
-  features.BrightLights = state.LightFeatures.BrightLights;
-  features.Map = state.LightFeatures.Map;
-  const double perObject = leaves / features.Objects;
   const bool traced = this->Effective->GetSelfVisibility() && receivers &&
     receivers->GetPointData()->GetArray("SelfLogVisibility");
-  // The candidates' sphere count nearest to the proxies' (in ratio).
-  double nearest = 0.0;
-  for (const auto& c : state.Model.Candidates)
-  {
-    const double d = std::fabs(std::log(c.Settings.Spheres / std::max(1.0, perObject)));
-    if (nearest == 0.0 || d < std::fabs(std::log(nearest / std::max(1.0, perObject))))
-    {
-      nearest = c.Settings.Spheres;
-    }
-  }
   budget::Budget b;
   if (this->ErrorBudget != 0.0)
   {
@@ -733,36 +656,19 @@ std::string vtkPGIGlobalIllumination::ApplyBudget(vtkPolyData* proxies, vtkPolyD
   {
     b.SetSeconds(this->TimeBudget);
   }
-  // The candidates of these inputs; a model without them (a calibration
-  // of other settings) is used as it is, and the plan says so.
-  budget::Choice choice = budget::Choose(state.Model, features, b,
-    [&](const budget::Knobs& k)
-    { return k.Spheres == nearest && (k.SelfVisibility > 0) == traced; });
-  const bool matched = choice.Candidate >= 0;
-  if (!matched)
+  budget::Choice choice;
+  std::string error;
+  // Orders 2..8 (Model::Read checks), all within this filter's support.
+  if (!this->Budget->Plan(this->BudgetModelFileName ? this->BudgetModelFileName : "",
+        budget::Route::Filter, proxies, points, traced, this->Lighting, b, this->Effective, choice,
+        this->BudgetPlan, error))
   {
-    choice = budget::Choose(state.Model, features, b);
-  }
-  if (choice.Candidate < 0)
-  {
-    return "Budget: " + choice.Reason + ".";
+    return error + ".";
   }
   if (!choice.Valid)
   {
     vtkWarningMacro(<< "Budget: " << choice.Reason << ".");
   }
-  // Orders 2..8 (Model::Read checks), all within this filter's support.
-  choice.Settings.Apply(this->Effective);
-  std::ostringstream line;
-  line.precision(3);
-  line << "budget: " << choice.Settings.Describe() << " (the proxies' " << perObject
-       << " spheres per object as " << nearest << ", self-visibility "
-       << (traced ? "given" : "by the rules")
-       << (matched ? "" : "; the model has no candidate for these inputs: its nearest")
-       << "); predicted error " << 100.0 * choice.PredictedError << "%, "
-       << 1e3 * choice.PredictedSeconds << " ms on " << state.Model.Machine << "; "
-       << (choice.Met ? "" : "NOT MET: ") << choice.Reason;
-  this->BudgetPlan = line.str();
   return std::string();
 }
 

@@ -128,6 +128,13 @@ class vtkMultiProcessController;
 class vtkPGILighting;
 class vtkPGILocalLightTransfer;
 class vtkPGIOccluder;
+namespace proxygi
+{
+namespace budget
+{
+class Planner;
+}
+}
 
 class PROXYGISHADING_EXPORT vtkPGIGlobalIllumination : public vtkPolyDataAlgorithm
 {
@@ -245,8 +252,7 @@ protected:
   double ColorExposure = 1.0;
   double ErrorBudget = 0.0, TimeBudget = 0.0;
   char* BudgetModelFileName = nullptr;
-  struct BudgetState;
-  std::unique_ptr<BudgetState> Budget;
+  std::unique_ptr<proxygi::budget::Planner> Budget;
   std::string BudgetPlan;
   vtkMultiProcessController* Controller = nullptr;
   double CommunicationTime = 0.0, CommunicationBytes = 0.0;

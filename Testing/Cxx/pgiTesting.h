@@ -38,6 +38,21 @@ inline bool Says(
   return false;
 }
 
+/// The test's temporary directory: the value of "-T" (vtk_add_test_cxx
+/// passes it), else ".".
+inline std::string TempDirectory(int argc, char* argv[])
+{
+  std::string dir = ".";
+  for (int i = 0; i + 1 < argc; ++i)
+  {
+    if (std::string(argv[i]) == "-T")
+    {
+      dir = argv[i + 1];
+    }
+  }
+  return dir;
+}
+
 inline int& Failures()
 {
   static int count = 0;

@@ -107,6 +107,17 @@ for prop, value, back, said in (("GIOrder", 3, 4, "order 3"), ("GIEnvironmentSca
     setattr(display, prop, back)
     Render(view)
 
+# The accuracy budget: the mappers choose among the model's GPU-mapper
+# candidates and say so; none: the order as set again.
+display.GIErrorBudget = 0.5
+Render(view)
+check("budget: GPU mapper: order " in mapper.GetGIStatus(),
+      "GIErrorBudget chooses a mapper candidate (%s)" % mapper.GetGIStatus().split("; budget: ")[-1][:80])
+display.GIErrorBudget = 0.0
+Render(view)
+check("budget:" not in mapper.GetGIStatus() and "order 4" in mapper.GetGIStatus(),
+      "no budget: the order as set")
+
 # The C++ classes on the same inputs: the blocks the representation drew,
 # its proxies and the forest map, through vtkPGIGIPolyDataMapper (one
 # actor per block) in a window of the same size and camera.

@@ -97,6 +97,24 @@ void vtkPGISurfaceRepresentation::SetAlwaysRecompute(bool on)
   GIMapper(this->LODMapper)->SetAlwaysRecompute(on);
 }
 
+void vtkPGISurfaceRepresentation::SetErrorBudget(double fraction)
+{
+  GIMapper(this->Mapper)->SetErrorBudget(fraction);
+  GIMapper(this->LODMapper)->SetErrorBudget(fraction);
+}
+
+void vtkPGISurfaceRepresentation::SetTimeBudget(double seconds)
+{
+  GIMapper(this->Mapper)->SetTimeBudget(seconds);
+  GIMapper(this->LODMapper)->SetTimeBudget(seconds);
+}
+
+void vtkPGISurfaceRepresentation::SetBudgetModelFileName(const char* fileName)
+{
+  GIMapper(this->Mapper)->SetBudgetModelFileName(fileName);
+  GIMapper(this->LODMapper)->SetBudgetModelFileName(fileName);
+}
+
 void vtkPGISurfaceRepresentation::AddBlockerPlane(
   double ox, double oy, double oz, double nx, double ny, double nz, double ar, double ag, double ab)
 {

@@ -59,6 +59,10 @@ public:
   void SetExposure(double exposure);
   void SetCombineWithVTKLighting(bool on);
   void SetAlwaysRecompute(bool on);
+  /// The accuracy budget of both mappers (vtkPGIGIPolyDataMapper::SetErrorBudget).
+  void SetErrorBudget(double fraction);
+  void SetTimeBudget(double seconds);
+  void SetBudgetModelFileName(const char* fileName);
   void AddBlockerPlane(double ox, double oy, double oz, double nx, double ny, double nz, double ar,
     double ag, double ab);
   void RemoveAllBlockerPlanes();

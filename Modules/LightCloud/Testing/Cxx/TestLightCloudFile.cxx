@@ -46,14 +46,7 @@ bool ReadFails(const std::string& path, const std::string& text)
 
 int TestLightCloudFile(int argc, char* argv[])
 {
-  std::string dir = ".";
-  for (int i = 0; i + 1 < argc; ++i)
-  {
-    if (std::string(argv[i]) == "-T")
-    {
-      dir = argv[i + 1];
-    }
-  }
+  const std::string dir = pgitest::TempDirectory(argc, argv);
   const std::string path = dir + "/TestLightCloudFile.cloud";
   const vtkIdType lights = 5, receivers = 7;
   vtkNew<vtkPGILightCloud> cloud;

@@ -65,14 +65,7 @@ public:
 
 int TestLightCloudPrecompute(int argc, char* argv[])
 {
-  std::string dir = ".";
-  for (int i = 0; i + 1 < argc; ++i)
-  {
-    if (std::string(argv[i]) == "-T")
-    {
-      dir = argv[i + 1];
-    }
-  }
+  const std::string dir = pgitest::TempDirectory(argc, argv);
   const double pi = vtkMath::Pi();
 
   // 1. Direct light on a lone plane: the closed form.

@@ -243,6 +243,74 @@ int TestAccuracyBudget(int, char*[])
       "shipped: finite, positive, time grows with receivers");
   }
 
+  // Routes: the GPU mapper's candidates are told apart, written, read, and
+  // files written before the route (17 CSV fields, 13 candidate words) read
+  // as the filter's.
+  Knobs onGPU = MapperGrid().front();
+  Knobs onCPU = onGPU;
+  onCPU.Backend = Route::Filter;
+  ok &= Check(onGPU.Backend == Route::Mapper && onGPU.SelfVisibility == 0 &&
+      onGPU.HierarchyAngle == 0.0 && !(onGPU == onCPU),
+    "a mapper candidate differs from the same knobs on the filter");
+  ok &= Check(onGPU.Describe().rfind("GPU mapper: order 3, 16 spheres", 0) == 0 &&
+      onGPU.Describe().find("hierarchy") == std::string::npos,
+    "the mapper's description");
+  ok &= Check(MapperGrid().size() == 12, "the mapper's grid: 3 orders x 2 x 2");
+  Measurement onMapper = rows.front();
+  onMapper.Settings = onGPU;
+  std::vector<Measurement> routed{ rows.front(), onMapper }, readRouted;
+  std::string routeError;
+  ok &= Check(ReadMeasurements(WriteMeasurements(routed), readRouted, routeError) &&
+      readRouted.size() == 2 && readRouted[0].Settings.Backend == Route::Filter &&
+      readRouted[1].Settings == onGPU,
+    "CSV round trip with the route");
+  std::string text = WriteMeasurements(routed);
+  const std::string old = text.substr(0, text.find(",route\n")) + "\n" +
+    text.substr(text.find('\n') + 1, text.find(",filter\n") - text.find('\n') - 1) + "\n";
+  ok &= Check(ReadMeasurements(old, readRouted, routeError) && readRouted.size() == 1 &&
+      readRouted[0].Settings.Backend == Route::Filter,
+    "a CSV without the route column: the filter's");
+  std::string wrongRoute = text;
+  wrongRoute.replace(wrongRoute.find(",mapper\n"), 7, ",gpu");
+  ok &= Check(!ReadMeasurements(wrongRoute, readRouted, routeError), "an unknown route refused");
+  Model twoRoutes = model;
+  twoRoutes.Candidates.push_back(model.Candidates[0]);
+  twoRoutes.Candidates.back().Settings = onGPU;
+  twoRoutes.MapperRenderer = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  Model readTwo;
+  ok &= Check(readTwo.Read(twoRoutes.Write(), routeError) && readTwo.Candidates.size() == 4 &&
+      readTwo.Candidates[3].Settings == onGPU &&
+      readTwo.Candidates[0].Settings.Backend == Route::Filter &&
+      readTwo.MapperRenderer == twoRoutes.MapperRenderer && readTwo.HasRoute(Route::Mapper) &&
+      !model.HasRoute(Route::Mapper),
+    "model round trip with the route and the renderer");
+  std::string oldModel = model.Write();
+  for (std::size_t at = oldModel.find(" filter\n"); at != std::string::npos;
+       at = oldModel.find(" filter\n"))
+  {
+    oldModel.erase(at, 7);
+  }
+  ok &= Check(readTwo.Read(oldModel, routeError) && readTwo.Candidates.size() == 3 &&
+      !readTwo.HasRoute(Route::Mapper),
+    "a model without route words: the filter's");
+  std::string order8 = twoRoutes.Write();
+  order8.replace(order8.rfind("candidate 3 "), 12, "candidate 8 ");
+  ok &= Check(!readTwo.Read(order8, routeError), "a mapper candidate of order 8 refused");
+  // Which renderer the mapper's times describe.
+  std::string why;
+  ok &= Check(SoftwareRenderer("EGL, Mesa llvmpipe (LLVM 15.0.6, 256 bits)") &&
+      SoftwareRenderer("Software Rasterizer") && !SoftwareRenderer("NVIDIA H100 PCIe/PCIe/SSE2"),
+    "software renderers");
+  ok &= Check(
+    !MapperTimesApply(model, "llvmpipe", why) && why.find("no GPU-mapper") != std::string::npos,
+    "no mapper candidates: said");
+  ok &= Check(MapperTimesApply(twoRoutes, "Mesa llvmpipe (LLVM 16)", why) &&
+      !MapperTimesApply(twoRoutes, "NVIDIA H100 PCIe/PCIe/SSE2", why) &&
+      why.find("calibrate") != std::string::npos,
+    "mapper times hold on the same kind of renderer only");
+  c = Choose(twoRoutes, probe, b, [](const Knobs& k) { return k.Backend == Route::Mapper; });
+  ok &= Check(c.Candidate == 3 && c.Settings.Backend == Route::Mapper, "a route's candidates only");
+
   // The filter: a budget sets its effective knobs and the plan says so.
   const pgitest::HardScene scene = pgitest::HardScenes()[3]; // a ground under 4 spheres
   vtkNew<vtkPGILighting> sky;
