@@ -22,6 +22,8 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <chrono>
+
 namespace proxygi
 {
 namespace cli
@@ -122,6 +124,25 @@ std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> AddGPUMappers(vtkRenderer* 
     mappers.push_back(mapper);
   }
   return mappers;
+}
+
+double TimeGIFrame(
+  vtkRenderWindow* window, const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>& mappers)
+{
+  for (auto& mapper : mappers)
+  {
+    mapper->AlwaysRecomputeOn();
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  window->Render();
+  window->WaitForCompletion();
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (auto& mapper : mappers)
+  {
+    mapper->AlwaysRecomputeOff();
+  }
+  return seconds;
 }
 
 bool ReadBackRadiance(const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>& mappers,

@@ -52,6 +52,9 @@ std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>> AddGPUMappers(vtkRenderer* 
 /// `shaded`. False, with why, when a mapper's GI pass did not run.
 bool ReadBackRadiance(const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>& mappers,
   std::vector<vtkSmartPointer<vtkPolyData>>& shaded, std::string& error);
+/// Seconds of one frame that recomputes GI (AlwaysRecompute for that frame).
+double TimeGIFrame(
+  vtkRenderWindow* window, const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>& mappers);
 
 /// Plain mappers (the albedo as diffuse colour) under `pass`, the renderer's pass.
 void AddImageSpacePass(vtkRenderer* renderer, vtkPGIImageSpaceGIPass* pass,

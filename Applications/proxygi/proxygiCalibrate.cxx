@@ -364,23 +364,15 @@ int RunCalibrate(const Args& args)
             vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
             return 1;
           }
-          // Past llvmpipe's loop limit the GI pass is cut short (the
-          // status says so): its error would be llvmpipe's, not the route's.
+          // Past llvmpipe's loop limit the GI pass is cut short: its error
+          // would be llvmpipe's, not the route's.
           for (auto& mapper : mappers)
           {
-            cutShort =
-              cutShort || mapper->GetGIStatus().find("beyond its loop budget") != std::string::npos;
+            cutShort = cutShort || mapper->GetGICutShort();
           }
           err = RelativeRMSE(shaded, "Radiance", truth, "Radiance");
           checkErr = cheap.empty() ? -1.0 : EstimatedRelativeRMSE(shaded, cheap, CheckSpp, spp);
-          for (auto& mapper : mappers)
-          {
-            mapper->AlwaysRecomputeOn();
-          }
-          const auto t0 = Clock::now();
-          window->Render();
-          window->WaitForCompletion();
-          best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+          best = std::min(best, TimeGIFrame(window, mappers));
           mapperRenderer = DescribeRenderWindowContext(window);
         }
         if (cutShort)

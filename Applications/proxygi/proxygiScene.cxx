@@ -550,16 +550,8 @@ bool ReadBackGPU(vtkRenderWindow* window,
   for (auto& mapper : mappers)
   {
     mapper->SetExposure(exposure);
-    mapper->AlwaysRecomputeOn();
   }
-  const auto f0 = Clock::now();
-  window->Render();
-  window->WaitForCompletion();
-  frameSeconds = Seconds(f0, Clock::now());
-  for (auto& mapper : mappers)
-  {
-    mapper->AlwaysRecomputeOff();
-  }
+  frameSeconds = TimeGIFrame(window, mappers);
   return true;
 }
 

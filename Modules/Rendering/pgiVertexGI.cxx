@@ -212,17 +212,9 @@ bool MapperScene::PrepareBake(vtkPolyData* proxies, double receivers)
   this->Bake->SetLighting(this->Lighting);
   vtkPGIGISettings* requested = this->Settings;
   this->BudgetLine.clear();
-  if (this->ErrorBudget != 0.0 || this->TimeBudget != 0.0)
+  const auto b = budget::Budget::FromSetters(this->ErrorBudget, this->TimeBudget);
+  if (b.Any())
   {
-    budget::Budget b;
-    if (this->ErrorBudget != 0.0)
-    {
-      b.SetError(this->ErrorBudget);
-    }
-    if (this->TimeBudget != 0.0)
-    {
-      b.SetSeconds(this->TimeBudget);
-    }
     // The user's settings stay as set; the budget's knobs go on a copy.
     vtkNew<vtkPGIGISettings> chosen;
     chosen->DeepCopy(this->Settings);
@@ -666,7 +658,8 @@ void VertexGI::ComposeStatus(vtkObject* owner, vtkPGIGIBake* bake, const std::st
     const bool llvmpipe = renderer && std::strstr(renderer, "llvmpipe");
     const bool overBudget =
       g.ProxyCount > 1000 || (indirect && g.ProxyCount > 600) || g.SphericalLightCount > 96;
-    if (llvmpipe && overBudget)
+    this->CutShort = llvmpipe && overBudget;
+    if (this->CutShort)
     {
       status << "; on llvmpipe beyond its loop budget (more than 1000 proxies, 600 with the "
                 "bounce or 96 spherical lights): results may be cut short";

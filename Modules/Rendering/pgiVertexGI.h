@@ -157,6 +157,9 @@ public:
 
   int GetNumberOfUpdates() const { return this->Updates; }
   const std::string& GetStatus() const { return this->Status; }
+  /// Whether the last GI pass ran past llvmpipe's loop limit (its results
+  /// may be cut short; the status says so).
+  bool GetCutShort() const { return this->CutShort; }
   void SetStatus(const std::string& status) { this->Status = status; }
 
   void ReleaseGraphicsResources(vtkWindow* window);
@@ -173,6 +176,7 @@ private:
   struct Internals;
   std::unique_ptr<Internals> GPU;
   int Updates = 0;
+  bool CutShort = false;
   std::string Status;
 };
 

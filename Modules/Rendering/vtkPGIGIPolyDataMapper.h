@@ -165,6 +165,9 @@ public:
   int GetNumberOfGIUpdates() const { return this->GI.GetNumberOfUpdates(); }
   /// What the last frame did and why, one line (e.g. for logs).
   const std::string& GetGIStatus() const { return this->GI.GetStatus(); }
+  /// Whether the last GI pass ran past llvmpipe's loop limit, so its results
+  /// may be cut short (GetGIStatus says so too).
+  bool GetGICutShort() const { return this->GI.GetCutShort(); }
 
   void ReleaseGraphicsResources(vtkWindow* window) override;
 

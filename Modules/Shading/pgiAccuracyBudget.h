@@ -195,6 +195,21 @@ struct PROXYGISHADING_EXPORT Budget
     this->Seconds = seconds;
     this->HasTime = true;
   }
+  /// As the filter's and mappers' SetErrorBudget / SetTimeBudget take
+  /// them: each given where it is not 0.
+  static Budget FromSetters(double error, double seconds)
+  {
+    Budget b;
+    if (error != 0.0)
+    {
+      b.SetError(error);
+    }
+    if (seconds != 0.0)
+    {
+      b.SetSeconds(seconds);
+    }
+    return b;
+  }
 };
 
 struct PROXYGISHADING_EXPORT Choice

@@ -647,15 +647,7 @@ std::string vtkPGIGlobalIllumination::ApplyBudget(vtkPolyData* proxies, vtkPolyD
     receivers ? static_cast<double>(receivers->GetNumberOfPoints()) : 0.0);
   const bool traced = this->Effective->GetSelfVisibility() && receivers &&
     receivers->GetPointData()->GetArray("SelfLogVisibility");
-  budget::Budget b;
-  if (this->ErrorBudget != 0.0)
-  {
-    b.SetError(this->ErrorBudget);
-  }
-  if (this->TimeBudget != 0.0)
-  {
-    b.SetSeconds(this->TimeBudget);
-  }
+  const auto b = budget::Budget::FromSetters(this->ErrorBudget, this->TimeBudget);
   budget::Choice choice;
   std::string error;
   // Orders 2..8 (Model::Read checks), all within this filter's support.

@@ -14,7 +14,6 @@
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkFloatArray.h"
-#include "vtkPlaneSource.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
@@ -84,13 +83,8 @@ int TestRenderingBudget(int argc, char* argv[])
   std::string error;
   PGI_CHECK(SmallModel().Save(modelFile, error));
 
-  vtkNew<vtkPlaneSource> ground;
-  ground->SetOrigin(-2, -2, 0);
-  ground->SetPoint1(2, -2, 0);
-  ground->SetPoint2(-2, 2, 0);
-  ground->SetResolution(16, 16);
   vtkNew<vtkPGIGIPolyDataMapper> mapper;
-  mapper->SetInputConnection(ground->GetOutputPort());
+  mapper->SetInputData(pgitest::HardPlane(2.0, 0.0, 16));
   mapper->SetProxies(pgitest::HardProxies({ { 0, 0, 1.0, 0.6, 0 } }));
   mapper->GetSettings()->SetOrder(6);
   mapper->GetSettings()->SetIndirect(false); // the budget's knobs only: fast on llvmpipe

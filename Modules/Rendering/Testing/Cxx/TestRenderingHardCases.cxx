@@ -72,6 +72,9 @@ vtkSmartPointer<vtkFloatArray> RunGPU(vtkRenderWindow* window, const pgitest::Ha
   window->AddRenderer(renderer);
   renderer->ResetCamera();
   window->Render();
+  // The flag and the status agree on llvmpipe's loop limit.
+  PGI_CHECK(mapper->GetGICutShort() ==
+    (mapper->GetGIStatus().find("beyond its loop budget") != std::string::npos));
   if (status)
   {
     *status = mapper->GetGIStatus();
