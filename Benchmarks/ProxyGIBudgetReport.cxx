@@ -8,16 +8,20 @@
 //    fastest (most accurate) candidate that meets the same budget, found by
 //    the exhaustive sweep, and how often the choice misses the budget;
 //  - per scene, the Pareto front (error against time) with the chosen points
-//    and Embree's curve beside it.
+//    and Embree's curve beside it;
+//  - with --variations, the knobs the grid keeps at their defaults (runs of
+//    `proxygi calibrate --grid variations`) against those defaults
+//    (PREFIX-variations.md).
 // Writes a Markdown report and PNG plots (VTK charts: a display or xvfb-run).
 //
 //   ProxyGIBudgetReport --train A.csv --held-out B.csv [--embree E.csv,...]
-//                       [--plots scene,...] --out PREFIX
+//                       [--plots scene,...] [--variations V.csv,...] --out PREFIX
 #include "pgiAccuracyBudget.h"
 
 #include "pgiBenchPlot.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -149,9 +153,10 @@ void Evaluate(const Model& model, const std::vector<Measurement>& scene, bool he
     }
   }
   evaluations.push_back(e);
-  // Features: the scene's own, the candidate's sphere count aside (the
-  // model uses the candidate's), so any row's.
-  const SceneFeatures& f = scene.front().Features;
+  // The features as proxygi render has them before it builds proxies: the
+  // scene's own (any row's), no sphere count (each candidate's, ProxySpheres).
+  SceneFeatures f = scene.front().Features;
+  f.Spheres = 0.0;
   auto outcome = [&](const Choice& c)
   {
     Outcome o;
@@ -190,12 +195,11 @@ void Evaluate(const Model& model, const std::vector<Measurement>& scene, bool he
       ran = m.Settings == c.Settings ? &m : ran;
     }
     Choice kept = c;
-    // proxygi render checks the CPU filter's choices only.
-    if (ran && ran->CheckError > 0.0 && c.Settings.Backend == Route::Filter)
+    // As proxygi render --mode auto: both routes, the mapper's choices read back.
+    if (ran && ran->CheckError > 0.0)
     {
       SceneFeatures checked = f;
-      const Choice again = Recheck(model, checked, b, c, ran->CheckError, ran->Seconds,
-        [](const Knobs& k) { return k.Backend == Route::Filter; });
+      const Choice again = Recheck(model, checked, b, c, ran->CheckError, ran->Seconds);
       const Measurement* second = nullptr;
       for (const Measurement& m : scene)
       {
@@ -239,19 +243,76 @@ std::string Percent(double v)
   std::snprintf(text, sizeof(text), "%.1f%%", 100.0 * v);
   return text;
 }
+
+// `proxygi calibrate --grid variations` runs against the same candidates
+// with every knob at its default (the default grid's runs of that scene):
+// per varied knob, time and error over the default's, and how often the
+// variation is both faster and more accurate. Markdown, or "" without runs.
+std::string VariationTable(
+  const std::vector<Measurement>& variations, const std::vector<Measurement>& defaults)
+{
+  const Knobs plain;
+  std::map<std::string, std::array<std::vector<double>, 2>> ratios;
+  std::map<std::string, int> dominates;
+  std::vector<std::string> order;
+  for (const Measurement& v : variations)
+  {
+    Knobs base = v.Settings;
+    base.HierarchyAngle = plain.HierarchyAngle;
+    base.ExpMethod = plain.ExpMethod;
+    base.Blocking = plain.Blocking;
+    base.BrightLightRays = plain.BrightLightRays;
+    const auto found = std::find_if(defaults.begin(), defaults.end(),
+      [&](const Measurement& d) { return d.Scene == v.Scene && d.Settings == base; });
+    if (found == defaults.end() || v.Settings == base)
+    {
+      continue;
+    }
+    // The one knob off its default, as Describe says it.
+    const std::string all = v.Settings.Describe(), common = base.Describe();
+    const std::string knob = all.substr(std::min(all.size(), common.size() + 2));
+    if (ratios.find(knob) == ratios.end())
+    {
+      order.push_back(knob);
+    }
+    ratios[knob][0].push_back(v.Seconds / found->Seconds);
+    ratios[knob][1].push_back(v.Error / found->Error);
+    dominates[knob] += v.Seconds < found->Seconds && v.Error < found->Error ? 1 : 0;
+  }
+  if (order.empty())
+  {
+    return std::string();
+  }
+  std::string text = "| knob off its default | runs | time / default: median | range | error / "
+                     "default: median | range | faster and more accurate |\n"
+                     "|---|---:|---:|---:|---:|---:|---:|\n";
+  char line[512];
+  for (const std::string& knob : order)
+  {
+    const auto& r = ratios[knob];
+    const auto t = std::minmax_element(r[0].begin(), r[0].end());
+    const auto e = std::minmax_element(r[1].begin(), r[1].end());
+    std::snprintf(line, sizeof(line), "| %s | %zu | %.2f | %.2f-%.2f | %.3f | %.3f-%.3f | %d |\n",
+      knob.c_str(), r[0].size(), Median(r[0]), *t.first, *t.second, Median(r[1]), *e.first,
+      *e.second, dominates[knob]);
+    text += line;
+  }
+  return text;
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  std::string train, heldOut, out = "budget", embreeFiles, plotScenes;
+  std::string train, heldOut, out = "budget", embreeFiles, plotScenes, variationFiles;
   for (int i = 1; i + 1 < argc; i += 2)
   {
     const std::string a = argv[i];
-    (a == "--train"         ? train
-        : a == "--held-out" ? heldOut
-        : a == "--embree"   ? embreeFiles
-        : a == "--plots"    ? plotScenes
-                            : out) = argv[i + 1];
+    (a == "--train"           ? train
+        : a == "--held-out"   ? heldOut
+        : a == "--embree"     ? embreeFiles
+        : a == "--plots"      ? plotScenes
+        : a == "--variations" ? variationFiles
+                              : out) = argv[i + 1];
   }
   std::vector<Measurement> trainRows, heldRows;
   std::string error;
@@ -471,6 +532,26 @@ int main(int argc, char* argv[])
   summaryText += summary;
   md << summaryText;
   std::printf("%s", summaryText.c_str());
+
+  // The knobs the grid keeps at their defaults, measured around it.
+  std::vector<Measurement> variations, defaults = trainRows;
+  defaults.insert(defaults.end(), heldRows.begin(), heldRows.end());
+  for (const std::string& file : Split(variationFiles))
+  {
+    std::vector<Measurement> some;
+    if (!ReadMeasurements(Read(file), some, error))
+    {
+      std::fprintf(stderr, "ProxyGIBudgetReport: %s: %s\n", file.c_str(), error.c_str());
+      return 1;
+    }
+    variations.insert(variations.end(), some.begin(), some.end());
+  }
+  const std::string table = VariationTable(variations, defaults);
+  if (!table.empty())
+  {
+    std::ofstream(out + "-variations.md") << table;
+    std::printf("%s", table.c_str());
+  }
 
   // Pareto fronts.
   const std::vector<std::string> plots = Split(plotScenes);

@@ -2,6 +2,7 @@
 #include "proxygiBackends.h"
 #include "proxygiImage.h"
 
+#include "pgiOffscreenWindow.h"
 #include "vtkPGIGIPolyDataMapper.h"
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
@@ -9,6 +10,7 @@
 #include "vtkPGILighting.h"
 
 #include <vtkActor.h>
+#include <vtkCamera.h>
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
@@ -162,6 +164,41 @@ bool ReadBackRadiance(const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>
     result->GetPointData()->AddArray(radiance);
     shaded.push_back(result);
   }
+  return true;
+}
+
+bool ShadeOnGPU(const std::vector<vtkSmartPointer<vtkPolyData>>& receivers,
+  vtkPGIGISettings* settings, const LoadedScene& loaded, const SceneProxies& proxies,
+  const int size[2], std::vector<vtkSmartPointer<vtkPolyData>>& shaded, double& frameSeconds,
+  bool& cutShort, std::string& renderer, std::string& error)
+{
+  shaded.clear();
+  cutShort = false;
+  vtkNew<vtkRenderer> scene;
+  const auto mappers = AddGPUMappers(scene, receivers, settings, loaded, proxies, 1.0);
+  scene->SetActiveCamera(loaded.Camera);
+  std::string windowPath;
+  vtkSmartPointer<vtkRenderWindow> window = NewOffscreenRenderWindow(&windowPath);
+  if (!window)
+  {
+    error = "no offscreen OpenGL: " + windowPath;
+    return false;
+  }
+  window->SetSize(size[0], size[1]);
+  window->AddRenderer(scene);
+  // The first frame builds the shaders and tables; the timed one recomputes
+  // GI, as a frame that changes the scene does.
+  window->Render();
+  if (!ReadBackRadiance(mappers, shaded, error))
+  {
+    return false;
+  }
+  for (auto& mapper : mappers)
+  {
+    cutShort = cutShort || mapper->GetGICutShort();
+  }
+  frameSeconds = TimeGIFrame(window, mappers);
+  renderer = DescribeRenderWindowContext(window);
   return true;
 }
 

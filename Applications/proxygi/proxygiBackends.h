@@ -56,6 +56,16 @@ bool ReadBackRadiance(const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>
 double TimeGIFrame(
   vtkRenderWindow* window, const std::vector<vtkSmartPointer<vtkPGIGIPolyDataMapper>>& mappers);
 
+/// The GI mappers of `receivers` run once in a fresh offscreen window of
+/// `size` (the camera's): their radiance read back into `shaded` (cleared),
+/// then one frame that recomputes GI timed, as the budget's mapper times
+/// are. `cutShort`: llvmpipe's loop limit cut a GI pass short; `renderer`:
+/// the window's GL renderer. False, with why, when no window or GI ran.
+bool ShadeOnGPU(const std::vector<vtkSmartPointer<vtkPolyData>>& receivers,
+  vtkPGIGISettings* settings, const LoadedScene& loaded, const SceneProxies& proxies,
+  const int size[2], std::vector<vtkSmartPointer<vtkPolyData>>& shaded, double& frameSeconds,
+  bool& cutShort, std::string& renderer, std::string& error);
+
 /// Plain mappers (the albedo as diffuse colour) under `pass`, the renderer's pass.
 void AddImageSpacePass(vtkRenderer* renderer, vtkPGIImageSpaceGIPass* pass,
   const SceneDescription& scene, const std::vector<vtkSmartPointer<vtkPolyData>>& receivers,

@@ -7,21 +7,16 @@
 #include "proxygiProgress.h"
 
 #include "pgiAccuracyBudget.h"
-#include "pgiOffscreenWindow.h"
 #include "pgiScene.h"
 #include "pgiSceneSetup.h"
-#include "vtkPGIGIPolyDataMapper.h"
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
 #include "vtkPGIOccluder.h"
 
-#include <vtkCamera.h>
 #include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
-#include <vtkRenderWindow.h>
-#include <vtkRenderer.h>
 #include <vtkSMPTools.h>
 
 #include <algorithm>
@@ -54,6 +49,11 @@ the model that ships. The times are this machine's, with all its threads.
                       bounce, --mapper-orders), each timed as a frame that
                       recomputes GI on this machine's GL renderer, which the
                       model records
+  --grid G[,G]        the filter's candidates: default (the 32 above),
+                      variations (exp OL and PS*, hierarchy angle 0 and 45,
+                      per-object blocking, 4 and 64 rays per bright light,
+                      each alone around the order 4 and 6 candidates with
+                      traced self-visibility: 52), or both
   --mapper-orders L   the mapper's orders (default 3,4; 6 is its most: on
                       llvmpipe one of its frames takes 2-9 s)
   --mapper-renderer N with --fit: the GL renderer the mapper's runs were
@@ -149,6 +149,17 @@ int RunCalibrate(const Args& args)
   const bool mapperRoute = std::find(routes.begin(), routes.end(),
                              budget::RouteName(budget::Route::Mapper)) != routes.end();
   std::string mapperRenderer = Option(args, "--mapper-renderer", "");
+  std::vector<std::string> grids;
+  SplitList(Option(args, "--grid", "default"), grids);
+  const bool defaultGrid = std::find(grids.begin(), grids.end(), "default") != grids.end();
+  const bool variationGrid = std::find(grids.begin(), grids.end(), "variations") != grids.end();
+  if (grids.empty() ||
+    std::any_of(grids.begin(), grids.end(),
+      [](const std::string& g) { return g != "default" && g != "variations"; }))
+  {
+    vtkLogF(ERROR, "proxygi calibrate: --grid takes default, variations or default,variations");
+    return 2;
+  }
   if (!(filterRoute || mapperRoute) ||
     std::any_of(routes.begin(), routes.end(),
       [](const std::string& r) { return r != "filter" && r != "mapper"; }))
@@ -202,9 +213,14 @@ int RunCalibrate(const Args& args)
       scenes.push_back(std::string());
     }
     std::vector<budget::Knobs> grid, mapperGrid;
-    if (filterRoute)
+    if (filterRoute && defaultGrid)
     {
       grid = budget::DefaultGrid();
+    }
+    if (filterRoute && variationGrid)
+    {
+      const auto more = budget::VariationGrid();
+      grid.insert(grid.end(), more.begin(), more.end());
     }
     if (mapperRoute)
     {
@@ -344,37 +360,20 @@ int RunCalibrate(const Args& args)
           ConfigureSettings(settings, scene);
           k.Apply(settings);
           SetBackendPlaneDefaults(settings, "gpu");
-          vtkNew<vtkRenderer> renderer;
-          const auto mappers =
-            AddGPUMappers(renderer, plain, settings, loaded, proxies[k.Spheres], 1.0);
-          renderer->SetActiveCamera(loaded.Camera);
-          std::string windowPath;
-          vtkSmartPointer<vtkRenderWindow> window = NewOffscreenRenderWindow(&windowPath);
-          if (!window)
-          {
-            vtkLogF(ERROR, "proxygi calibrate: no offscreen OpenGL: %s", windowPath.c_str());
-            return 1;
-          }
-          window->SetSize(scene.Size[0], scene.Size[1]);
-          window->AddRenderer(renderer);
-          window->Render();
           std::vector<vtkSmartPointer<vtkPolyData>> shaded;
-          if (!ReadBackRadiance(mappers, shaded, error))
+          double frame = 0.0;
+          if (!ShadeOnGPU(plain, settings, loaded, proxies[k.Spheres], scene.Size, shaded, frame,
+                cutShort, mapperRenderer, error))
           {
             vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
             return 1;
           }
-          // Past llvmpipe's loop limit the GI pass is cut short: its error
-          // would be llvmpipe's, not the route's.
-          for (auto& mapper : mappers)
-          {
-            cutShort = cutShort || mapper->GetGICutShort();
-          }
           err = RelativeRMSE(shaded, "Radiance", truth, "Radiance");
           checkErr = cheap.empty() ? -1.0 : EstimatedRelativeRMSE(shaded, cheap, CheckSpp, spp);
-          best = std::min(best, TimeGIFrame(window, mappers));
-          mapperRenderer = DescribeRenderWindowContext(window);
+          best = std::min(best, frame);
         }
+        // Past llvmpipe's loop limit the GI pass is cut short: its error
+        // would be llvmpipe's, not the route's.
         if (cutShort)
         {
           std::printf("  %-70s not measured: llvmpipe's loop limit cuts its GI pass short\n",

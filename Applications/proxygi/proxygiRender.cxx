@@ -60,10 +60,12 @@ an option a mode has no use for as "note: ... does not apply".
   --budget-model FILE the model from 'proxygi calibrate' (default: the one
                       that ships, measured on a 2-core machine)
   --check N           check the budget's choice against Embree at N samples
-                      per vertex (16 is enough: its noise is taken out): the
-                      model's errors for this scene are scaled by what the
-                      check finds and, if that changes the choice, the scene
-                      is shaded again with the new one
+                      per vertex (16 is enough: its noise is taken out; a GPU
+                      mapper's choice is run once to read it back): the
+                      model's errors and times for this scene are scaled by
+                      what the check finds and, if that changes the choice
+                      (the route too, with --mode auto), the scene is shaded
+                      again with the new one and the better of the two kept
   --order N           SH order 2..8 (default 6 in vertex mode, 4 in the GPU
                       modes; the GPU mapper runs up to 6, the image-space
                       pass up to 4, and says so)

@@ -86,6 +86,7 @@ struct RenderOptions
   int PlaneDirections = 64; // the planes' bounce: look-ups per receiver (0: one point)
   int IndirectOrder = 0;    // the shadowed bounce's SH order (0: --order)
   int ExpMethod = vtkPGIGISettings::EXP_HYB;
+  int Blocking = vtkPGIGISettings::BLOCKING_PER_SPHERE; // the budget's knob (no option)
   std::string MethodName = "HYB", IndirectName = "shadowed";
   double HierarchyAngle = 25.0, Exposure = 0.0;
   std::string Output, Cache, Vtp, ReferencePNG;
@@ -305,6 +306,10 @@ void UseKnobs(const budget::Knobs& k, RenderOptions& o)
   o.Spheres = k.Spheres;
   o.SelfVisibility = k.SelfVisibility;
   o.HierarchyAngle = k.HierarchyAngle;
+  o.ExpMethod = k.ExpMethod;
+  o.MethodName = vtkPGIGISettings::ExpMethodName(k.ExpMethod);
+  o.Blocking = k.Blocking;
+  o.BrightRays = k.BrightLightRays;
   if (o.IndirectName != "off")
   {
     o.IndirectName = k.ShadowedIndirect ? "shadowed" : "unshadowed";
@@ -334,16 +339,21 @@ bool ChooseForBudget(
   const bool order = Given(args, "--order"), spheres = Given(args, "--spheres"),
              self = Given(args, "--self-visibility"), indirect = Given(args, "--indirect"),
              indirectOrder = Given(args, "--indirect-order"),
-             hierarchy = Given(args, "--hierarchy");
-  const budget::Knobs asGiven = { o.Order, o.IndirectOrder, o.Spheres, o.SelfVisibility,
+             hierarchy = Given(args, "--hierarchy"), method = Given(args, "--method"),
+             brightRays = Given(args, "--bright-rays");
+  budget::Knobs asGiven = { o.Order, o.IndirectOrder, o.Spheres, o.SelfVisibility,
     o.IndirectName == "shadowed", o.HierarchyAngle };
+  asGiven.ExpMethod = o.ExpMethod;
+  asGiven.BrightLightRays = o.BrightRays;
   o.Allowed = [=](const budget::Knobs& k)
   {
     return (!order || k.Order == asGiven.Order) && (!spheres || k.Spheres == asGiven.Spheres) &&
       (!self || k.SelfVisibility == asGiven.SelfVisibility) &&
       (!indirect || k.ShadowedIndirect == asGiven.ShadowedIndirect) &&
       (!indirectOrder || k.IndirectOrder == asGiven.IndirectOrder) &&
-      (!hierarchy || k.HierarchyAngle == asGiven.HierarchyAngle);
+      (!hierarchy || k.HierarchyAngle == asGiven.HierarchyAngle) &&
+      (!method || k.ExpMethod == asGiven.ExpMethod) &&
+      (!brightRays || k.BrightLightRays == asGiven.BrightLightRays);
   };
   // The GPU mapper's candidates where the model has them, with times of
   // this kind of renderer (auto); --mode gpu takes them in any case, said.
@@ -421,6 +431,7 @@ vtkSmartPointer<vtkPGIGISettings> MakeSettings(
   settings->SetHierarchyAngle(o.HierarchyAngle);
   settings->SetBrightLights(o.BrightLights == "on");
   settings->SetBrightLightRays(o.BrightRays);
+  settings->SetSphericalLightBlocking(o.Blocking);
   settings->SetPlaneBounceDirections(o.PlaneDirections);
   settings->SetIndirectOrder(o.IndirectOrder);
   SetBackendPlaneDefaults(settings, o.Mode);
@@ -622,10 +633,12 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   double occluderSeconds = 0.0;
   // --check N: the choice's error estimated against Embree at N samples
   // per vertex (EstimatedRelativeRMSE, against a reference of
-  // --reference-spp) and its time measured; the model's predictions for
+  // --reference-spp) and its time measured (the GPU mapper's: run once in
+  // a window of its own, a GI frame timed); the model's predictions for
   // this scene scaled by measured / predicted and the choice made again
-  // (budget::Recheck). A new choice is prepared, shaded and checked too,
-  // and the one of the two that serves the budget better is kept.
+  // among the routes the budget chose from (budget::Recheck). A new choice
+  // is prepared, shaded and checked too, and the one of the two that
+  // serves the budget better is kept.
   std::vector<vtkSmartPointer<vtkPolyData>> cheap;
   struct Attempt
   {
@@ -635,7 +648,8 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     vtkSmartPointer<vtkPGIGISettings> Settings, Effective;
     Clock::time_point T1, T2;
     budget::Choice Chosen;
-    double Estimated = 0.0;
+    std::string Mode;
+    double Estimated = 0.0, Seconds = 0.0;
   } first;
   for (int attempt = 0; attempt < 2; ++attempt)
   {
@@ -686,7 +700,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       vtkLogF(ERROR, "proxygi render: occluder: %s", occluderError.c_str());
       return 1;
     }
-    occluderSeconds = Seconds(t0, Clock::now());
+    occluderSeconds = occluder ? Seconds(t0, Clock::now()) : 0.0;
     // Shading: the CPU filter before rendering (vertex), or the GPU while rendering.
     t1 = Clock::now();
     if (o.Vertex())
@@ -694,14 +708,21 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       shaded = ShadeOnCPU(receiversIn, settings, scene, loaded, proxies, occluder);
     }
     t2 = Clock::now();
-    if (o.Budgeted() && o.CheckSpp > 0 && o.Gpu())
-    {
-      std::printf("budget check: not run on the GPU mapper's choice (it shades while rendering; "
-                  "the error below is measured)\n");
-    }
-    if (!o.Budgeted() || o.CheckSpp <= 0 || !o.Vertex())
+    if (!o.Budgeted() || o.CheckSpp <= 0 || !(o.Vertex() || o.Gpu()))
     {
       break;
+    }
+    double seconds = Seconds(t1, t2);
+    if (o.Gpu())
+    {
+      bool cutShort = false;
+      std::string renderer;
+      if (!ShadeOnGPU(receiversIn, settings, loaded, proxies, scene.Size, shaded, seconds, cutShort,
+            renderer, error))
+      {
+        vtkLogF(ERROR, "proxygi render: budget check: %s", error.c_str());
+        return 1;
+      }
     }
     double cheapSeconds = 0.0;
     if (cheap.empty())
@@ -715,15 +736,13 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       }
     }
     const double estimated = EstimatedRelativeRMSE(shaded, cheap, o.CheckSpp, o.ReferenceSpp);
-    const double seconds = Seconds(t1, t2);
     std::printf("budget check: Embree at %d samples per vertex estimates %.2f%% against %d "
-                "samples (predicted %.2f%%), SH shading %.3f s (predicted %.3f s)\n",
-      o.CheckSpp, 100.0 * estimated, o.ReferenceSpp, 100.0 * o.Chosen.PredictedError, seconds,
-      o.Chosen.PredictedSeconds);
+                "samples (predicted %.2f%%), %s %.3f s (predicted %.3f s)\n",
+      o.CheckSpp, 100.0 * estimated, o.ReferenceSpp, 100.0 * o.Chosen.PredictedError,
+      o.Gpu() ? "a GI frame" : "SH shading", seconds, o.Chosen.PredictedSeconds);
     if (attempt == 1)
     {
-      if (budget::FirstServesBetter(
-            o.Budget, first.Estimated, Seconds(first.T1, first.T2), estimated, seconds))
+      if (budget::FirstServesBetter(o.Budget, first.Estimated, first.Seconds, estimated, seconds))
       {
         std::printf("budget check: the first choice serves the budget better: kept (%s)\n",
           first.Chosen.Settings.Describe().c_str());
@@ -736,6 +755,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
         t1 = first.T1;
         t2 = first.T2;
         o.Chosen = first.Chosen;
+        o.Mode = first.Mode;
         UseKnobs(o.Chosen.Settings, o);
       }
       else
@@ -744,12 +764,10 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       }
       break;
     }
-    // The check re-shades on the CPU filter: it chooses again among its candidates.
-    const auto allowed = o.Allowed;
+    // Among the candidates the budget chose from: both routes under --mode
+    // auto where the mapper's times hold, else the mode's own.
     const budget::Choice again =
-      budget::Recheck(o.Model, o.Features, o.Budget, o.Chosen, estimated, seconds,
-        [allowed](const budget::Knobs& k)
-        { return k.Backend == budget::Route::Filter && allowed(k); });
+      budget::Recheck(o.Model, o.Features, o.Budget, o.Chosen, estimated, seconds, o.Allowed);
     std::printf("budget check: this scene's errors scaled by %.2f, its times by %.2f\n",
       o.Features.ErrorScale, o.Features.TimeScale);
     if (again.Candidate == o.Chosen.Candidate)
@@ -759,12 +777,20 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       break;
     }
     first = { proxies, receiversIn, shaded, receivers, settings, effective, t1, t2, o.Chosen,
-      estimated };
+      o.Mode, estimated, seconds };
     o.Chosen = again;
     UseKnobs(again.Settings, o);
-    std::printf("budget check: chose again -> %s, predicted %.1f%% in %.3f s; %s\n",
+    const std::string mode = again.Settings.Backend == budget::Route::Mapper ? "gpu" : "vertex";
+    std::printf("budget check: chose again -> %s, predicted %.1f%% in %.3f s; %s%s\n",
       again.Settings.Describe().c_str(), 100.0 * again.PredictedError, again.PredictedSeconds,
-      again.Reason.c_str());
+      again.Reason.c_str(), mode == o.Mode ? "" : ("; mode " + mode).c_str());
+    o.Mode = mode;
+  }
+  // The GPU mapper shades again while rendering: the check's read-back goes.
+  if (o.Gpu())
+  {
+    shaded.clear();
+    t1 = Clock::now();
   }
   double exposure = o.Exposure;
   if (!(exposure > 0.0) && o.Vertex())

@@ -15,6 +15,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <initializer_list>
 #include <limits>
@@ -113,14 +114,24 @@ bool SolveLeastSquares(const std::vector<std::vector<double>>& rows,
   return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
 }
 
-// P is the candidate's sphere count over the scene's meshes: the scene's
-// own count is the one the proxies were built with.
+// vtkPGIGISettings::ExpMethodName's inverse; -1 for no method.
+int ExpMethodFromName(const std::string& name)
+{
+  for (int m = vtkPGIGISettings::EXP_PS; m <= vtkPGIGISettings::EXP_HYB; ++m)
+  {
+    if (name == vtkPGIGISettings::ExpMethodName(m))
+    {
+      return m;
+    }
+  }
+  return -1;
+}
+
 constexpr int TimeTermCount = 5;
 std::array<double, TimeTermCount> TimeTerms(const SceneFeatures& f, const Knobs& k)
 {
   const double r = f.Receivers / ReceiverUnit;
-  return { { 1.0, f.Map, r, r * k.Spheres * std::max(1.0, f.Objects) / SphereUnit,
-    r * f.BrightLights } };
+  return { { 1.0, f.Map, r, r * ProxySpheres(f, k) / SphereUnit, r * f.BrightLights } };
 }
 
 double Evaluate(const std::array<double, TimeTermCount>& c, const SceneFeatures& f, const Knobs& k)
@@ -227,6 +238,19 @@ std::string Knobs::Describe() const
   {
     s << ", hierarchy " << this->HierarchyAngle << " deg";
   }
+  const Knobs defaults;
+  if (this->ExpMethod != defaults.ExpMethod)
+  {
+    s << ", exp " << vtkPGIGISettings::ExpMethodName(this->ExpMethod);
+  }
+  if (this->Blocking != defaults.Blocking)
+  {
+    s << ", per-object blocking";
+  }
+  if (this->BrightLightRays != defaults.BrightLightRays)
+  {
+    s << ", " << this->BrightLightRays << " rays per bright light";
+  }
   return s.str();
 }
 
@@ -237,6 +261,9 @@ void Knobs::Apply(vtkPGIGISettings* settings) const
   settings->SetIndirectMode(this->ShadowedIndirect ? vtkPGIGISettings::INDIRECT_MODE_SHADOWED
                                                    : vtkPGIGISettings::INDIRECT_MODE_UNSHADOWED);
   settings->SetHierarchyAngle(this->HierarchyAngle);
+  settings->SetExpMethod(this->ExpMethod);
+  settings->SetSphericalLightBlocking(this->Blocking);
+  settings->SetBrightLightRays(this->BrightLightRays);
 }
 
 bool Knobs::operator==(const Knobs& o) const
@@ -244,7 +271,8 @@ bool Knobs::operator==(const Knobs& o) const
   return this->Order == o.Order && this->IndirectOrder == o.IndirectOrder &&
     this->Spheres == o.Spheres && this->SelfVisibility == o.SelfVisibility &&
     this->ShadowedIndirect == o.ShadowedIndirect && this->HierarchyAngle == o.HierarchyAngle &&
-    this->Backend == o.Backend;
+    this->Backend == o.Backend && this->ExpMethod == o.ExpMethod && this->Blocking == o.Blocking &&
+    this->BrightLightRays == o.BrightLightRays;
 }
 
 std::vector<Knobs> DefaultGrid()
@@ -267,6 +295,48 @@ std::vector<Knobs> DefaultGrid()
           grid.push_back(k);
         }
       }
+    }
+  }
+  return grid;
+}
+
+// Knobs' defaults are the settings' (the header does not include them).
+static_assert(Knobs().ExpMethod == vtkPGIGISettings::EXP_HYB &&
+    Knobs().Blocking == vtkPGIGISettings::BLOCKING_PER_SPHERE,
+  "Knobs' defaults");
+
+std::vector<Knobs> VariationGrid()
+{
+  std::vector<Knobs> grid;
+  for (const Knobs& base : DefaultGrid())
+  {
+    if ((base.Order != 4 && base.Order != 6) || base.SelfVisibility == 0)
+    {
+      continue;
+    }
+    for (double angle : { 0.0, 45.0 })
+    {
+      Knobs k = base;
+      k.HierarchyAngle = angle;
+      grid.push_back(k);
+    }
+    for (int method : { vtkPGIGISettings::EXP_OL, vtkPGIGISettings::EXP_PS_STAR })
+    {
+      Knobs k = base;
+      k.ExpMethod = method;
+      grid.push_back(k);
+    }
+    if (base.ShadowedIndirect)
+    {
+      Knobs k = base;
+      k.Blocking = vtkPGIGISettings::BLOCKING_PER_OBJECT;
+      grid.push_back(k);
+    }
+    for (int rays : { 4, 64 })
+    {
+      Knobs k = base;
+      k.BrightLightRays = rays;
+      grid.push_back(k);
     }
   }
   return grid;
@@ -359,7 +429,7 @@ std::string WriteMeasurements(const std::vector<Measurement>& rows)
   s.precision(9);
   s << "scene,receivers,spheres_total,objects,peak_fraction,directionality,order,indirect_order,"
        "spheres,self_visibility,shadowed_indirect,hierarchy_angle,seconds,error,bright_lights,map,"
-       "check_error,route\n";
+       "check_error,route,exp_method,blocking,bright_light_rays\n";
   for (const Measurement& m : rows)
   {
     std::string scene = m.Scene;
@@ -370,7 +440,9 @@ std::string WriteMeasurements(const std::vector<Measurement>& rows)
       << "," << m.Settings.SelfVisibility << "," << (m.Settings.ShadowedIndirect ? 1 : 0) << ","
       << m.Settings.HierarchyAngle << "," << m.Seconds << "," << m.Error << ","
       << m.Features.BrightLights << "," << m.Features.Map << "," << m.CheckError << ","
-      << RouteName(m.Settings.Backend) << "\n";
+      << RouteName(m.Settings.Backend) << ","
+      << vtkPGIGISettings::ExpMethodName(m.Settings.ExpMethod) << "," << m.Settings.Blocking << ","
+      << m.Settings.BrightLightRays << "\n";
   }
   return s.str();
 }
@@ -395,14 +467,17 @@ bool ReadMeasurements(const std::string& text, std::vector<Measurement>& rows, s
     {
       cells.push_back(cell);
     }
-    // 17 fields: written before the route column (the filter's runs).
-    const bool route = cells.size() == 18;
-    if ((cells.size() != 17 && !route) ||
-      (route && cells[17] != RouteName(Route::Filter) && cells[17] != RouteName(Route::Mapper)))
+    // 17 fields: written before the route column (the filter's runs); 18:
+    // before the exp method, blocking and bright-light rays (their defaults).
+    const bool route = cells.size() >= 18, knobs = cells.size() == 21;
+    const int method = knobs ? ExpMethodFromName(cells[18]) : Knobs().ExpMethod;
+    if ((cells.size() != 17 && cells.size() != 18 && !knobs) ||
+      (route && cells[17] != RouteName(Route::Filter) && cells[17] != RouteName(Route::Mapper)) ||
+      method < 0)
     {
       error = "line " + std::to_string(number) +
-        ": 17 or 18 fields expected (the last: " + RouteName(Route::Filter) + " or " +
-        RouteName(Route::Mapper) + ")";
+        ": 17, 18 or 21 fields expected (the 18th: " + RouteName(Route::Filter) + " or " +
+        RouteName(Route::Mapper) + "; the 19th an exp method: PS, PS*, OL, HYB)";
       return false;
     }
     Measurement m;
@@ -427,6 +502,12 @@ bool ReadMeasurements(const std::string& text, std::vector<Measurement>& rows, s
       m.CheckError = std::stod(cells[16]);
       m.Settings.Backend =
         route && cells[17] == RouteName(Route::Mapper) ? Route::Mapper : Route::Filter;
+      m.Settings.ExpMethod = method;
+      if (knobs)
+      {
+        m.Settings.Blocking = std::stoi(cells[19]);
+        m.Settings.BrightLightRays = std::stoi(cells[20]);
+      }
     }
     catch (const std::exception&)
     {
@@ -545,6 +626,11 @@ bool Model::Fit(const std::vector<Measurement>& rows, std::string& error)
   return true;
 }
 
+double ProxySpheres(const SceneFeatures& f, const Knobs& k)
+{
+  return f.Spheres > 0.0 ? f.Spheres : k.Spheres * std::max(1.0, f.Objects);
+}
+
 double Model::PredictSeconds(std::size_t k, const SceneFeatures& f) const
 {
   return f.TimeScale * Evaluate(this->Candidates[k].Time, f, this->Candidates[k].Settings);
@@ -591,15 +677,28 @@ std::string Model::Write() const
   }
   s << "\nerror_spread " << this->ErrorSpread << "\n";
   s << "# order indirect_order spheres self_visibility shadowed hierarchy | a m b c d (s) | u v "
-       "| route\n";
+       "| route [exp=M] [blocking=object] [bright_rays=N] (knobs off their defaults)\n";
   for (const Candidate& c : this->Candidates)
   {
     const Knobs& k = c.Settings;
     s << "candidate " << k.Order << " " << k.IndirectOrder << " " << k.Spheres << " "
       << k.SelfVisibility << " " << (k.ShadowedIndirect ? 1 : 0) << " " << k.HierarchyAngle << " "
       << c.Time[0] << " " << c.Time[1] << " " << c.Time[2] << " " << c.Time[3] << " " << c.Time[4]
-      << " " << c.ErrorIntercept << " " << c.ErrorObjectsSlope << " " << RouteName(k.Backend)
-      << "\n";
+      << " " << c.ErrorIntercept << " " << c.ErrorObjectsSlope << " " << RouteName(k.Backend);
+    const Knobs defaults;
+    if (k.ExpMethod != defaults.ExpMethod)
+    {
+      s << " exp=" << vtkPGIGISettings::ExpMethodName(k.ExpMethod);
+    }
+    if (k.Blocking != defaults.Blocking)
+    {
+      s << " blocking=object";
+    }
+    if (k.BrightLightRays != defaults.BrightLightRays)
+    {
+      s << " bright_rays=" << k.BrightLightRays;
+    }
+    s << "\n";
   }
   return s.str();
 }
@@ -677,6 +776,33 @@ bool Model::Read(const std::string& text, std::string& error)
         ok = route == RouteName(Route::Filter) ||
           (route == RouteName(Route::Mapper) && c.Settings.Order <= 6);
         c.Settings.Backend = route == RouteName(Route::Mapper) ? Route::Mapper : Route::Filter;
+      }
+      // Then the knobs off their defaults.
+      std::string knob;
+      while (ok && words >> knob)
+      {
+        const std::size_t eq = knob.find('=');
+        const std::string name = knob.substr(0, eq),
+                          value = eq == std::string::npos ? "" : knob.substr(eq + 1);
+        if (name == "exp")
+        {
+          c.Settings.ExpMethod = ExpMethodFromName(value);
+          ok = c.Settings.ExpMethod >= 0;
+        }
+        else if (name == "blocking")
+        {
+          c.Settings.Blocking = vtkPGIGISettings::BLOCKING_PER_OBJECT;
+          ok = value == "object";
+        }
+        else if (name == "bright_rays")
+        {
+          c.Settings.BrightLightRays = std::atoi(value.c_str());
+          ok = c.Settings.BrightLightRays >= 1 && c.Settings.BrightLightRays <= 256;
+        }
+        else
+        {
+          ok = false;
+        }
       }
       m.Candidates.push_back(c);
     }

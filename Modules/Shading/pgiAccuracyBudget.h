@@ -6,8 +6,8 @@
  *
  * The model has one row per candidate (a point of the knob grid, Knobs):
  *  - time: t = a + m M + b R + c R P + d R L (M 1 with a map, R receivers
- *    in 1e4, P the candidate's spheres per mesh times the meshes in 1e2, L
- *    the map's bright lights),
+ *    in 1e4, P the leaf spheres in 1e2 (ProxySpheres), L the map's bright
+ *    lights),
  *    fitted per candidate by non-negative least squares on relative error;
  *  - error: log e = u_k + v_k log2(objects) + w . x(scene), an intercept
  *    and a slope on the objects per candidate (the ridge pulls the slopes to
@@ -67,12 +67,19 @@ struct PROXYGISHADING_EXPORT Knobs
   bool ShadowedIndirect = true;
   double HierarchyAngle = 25.0;
   Route Backend = Route::Filter;
+  /// vtkPGIGISettings' ExpMethod, SphericalLightBlocking, BrightLightRays
+  /// (the defaults: HYB, per sphere, 16; VariationGrid measures others).
+  int ExpMethod = 3;
+  int Blocking = 0;
+  int BrightLightRays = 16;
 
-  /// "order 6 (bounce 4), 64 spheres, traced self, shadowed bounce"; the
-  /// mapper's begin with "GPU mapper: ".
+  /// "order 6 (bounce 4), 64 spheres, traced self, shadowed bounce", then
+  /// any knob off its default ("exp OL"); the mapper's begin with "GPU
+  /// mapper: ".
   std::string Describe() const;
-  /// Sets order, indirect order and mode, hierarchy angle on `settings`
-  /// (sphere count and self-visibility are the caller's: they are upstream).
+  /// Sets order, indirect order and mode, hierarchy angle, exp method,
+  /// blocking and bright-light rays on `settings` (sphere count and
+  /// self-visibility are the caller's: they are upstream).
   void Apply(vtkPGIGISettings* settings) const;
   bool operator==(const Knobs& other) const;
 };
@@ -81,6 +88,12 @@ struct PROXYGISHADING_EXPORT Knobs
 /// (bounce at min(order, 4)), 16 or 64 spheres, traced self-visibility or the
 /// rules, shadowed or unshadowed bounce.
 PROXYGISHADING_EXPORT std::vector<Knobs> DefaultGrid();
+/// The knobs the default grid keeps at their defaults, each varied alone
+/// (`proxygi calibrate --variations`) around the default grid's order 4 and
+/// 6 candidates with traced self-visibility: hierarchy angle 0 (no cuts)
+/// and 45 degrees, exp OL and PS*, per-object blocking (shadowed bounce
+/// only), 4 and 64 rays per bright light.
+PROXYGISHADING_EXPORT std::vector<Knobs> VariationGrid();
 /// The GPU mapper's grid (`proxygi calibrate --routes mapper`): orders 3, 4,
 /// 6 (its most), 16 or 64 spheres, shadowed or unshadowed bounce; the rules,
 /// no hierarchy cuts, the bounce at the order.
@@ -90,8 +103,10 @@ PROXYGISHADING_EXPORT std::vector<Knobs> MapperGrid();
 struct PROXYGISHADING_EXPORT SceneFeatures
 {
   double Receivers = 0.0; ///< points shaded (all receivers of a frame)
-  /// Leaf proxy spheres the scene was measured with (recorded; the model
-  /// uses each candidate's own count times Objects).
+  /// Leaf proxy spheres of the scene's proxies where they are built (a
+  /// measurement, the filter's and mappers' own proxies: every candidate
+  /// chosen among shades with these); 0 where the choice builds them (the
+  /// CLI: each candidate's count times Objects). See ProxySpheres.
   double Spheres = 0.0;
   double Objects = 1.0; ///< meshes that cast shadows
   /// The brightest compact peak's share of the light's power (a sun).
@@ -112,6 +127,12 @@ struct PROXYGISHADING_EXPORT SceneFeatures
   /// Both light terms from a vtkPGILighting (its map, or its uniform sky).
   bool SetLight(vtkPGILighting* lighting, std::string& error);
 };
+
+/// The leaf spheres a candidate shades with on a scene, P of the time law:
+/// the proxies' own count where the features have it (a mesh that is a
+/// sphere is one sphere, whatever the candidate asks), else the candidate's
+/// count per mesh times the meshes.
+PROXYGISHADING_EXPORT double ProxySpheres(const SceneFeatures& f, const Knobs& k);
 
 constexpr int NumberOfErrorFeatures = 3;
 /// x(scene) of the error model: peak fraction, directionality, log2 objects.

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <sstream>
 #include <string>
 
 namespace
@@ -32,11 +33,11 @@ void CountWarning(vtkObject*, unsigned long, void*, void*)
   ++Warnings;
 }
 
-bool Check(bool ok, const char* what)
+bool Check(bool ok, const std::string& what)
 {
   if (!ok)
   {
-    std::fprintf(stderr, "FAILED: %s\n", what);
+    std::fprintf(stderr, "FAILED: %s\n", what.c_str());
   }
   return ok;
 }
@@ -46,7 +47,26 @@ bool Near(double a, double b, double relative)
   return std::fabs(a - b) <= relative * std::max(std::fabs(a), std::fabs(b));
 }
 
-// Three candidates on six scenes that follow the model's laws exactly.
+// CSV text as an older writer wrote it: each line's first `fields` fields.
+std::string FirstFields(const std::string& csv, int fields)
+{
+  std::istringstream in(csv);
+  std::string line, out;
+  while (std::getline(in, line))
+  {
+    std::size_t end = 0;
+    for (int f = 0; f < fields && end != std::string::npos; ++f)
+    {
+      end = line.find(',', f == 0 ? 0 : end + 1);
+    }
+    out += line.substr(0, end) + "\n";
+  }
+  return out;
+}
+
+// Three candidates on six scenes that follow the model's laws exactly. The
+// last scene's mesh is a sphere: one proxy sphere whatever a candidate asks
+// (recorded in Spheres, as calibrate does), and P of the time law is 1.
 std::vector<Measurement> SyntheticRows()
 {
   Knobs fast, middle, accurate;
@@ -75,8 +95,9 @@ std::vector<Measurement> SyntheticRows()
       Measurement m;
       m.Scene = "scene " + std::to_string(s);
       m.Features = f;
+      m.Features.Spheres = s == 5 ? 1.0 : knobs[k].Spheres * f.Objects;
       m.Settings = knobs[k];
-      const double r = f.Receivers / 1e4, p = knobs[k].Spheres * f.Objects / 1e2;
+      const double r = f.Receivers / 1e4, p = m.Features.Spheres / 1e2;
       m.Seconds = time[k][0] + time[k][1] * f.Map + time[k][2] * r + time[k][3] * r * p +
         time[k][4] * r * f.BrightLights;
       const auto x = ErrorFeatures(f);
@@ -113,6 +134,17 @@ int TestAccuracyBudget(int, char*[])
   std::printf("synthetic fit: worst time %.2e, worst error %.2e (relative), spread %.2e\n",
     worstTime, worstError, model.ErrorSpread);
   ok &= Check(worstTime < 1e-9 && worstError < 1e-2 && model.ErrorSpread < 1e-2, "exact fit");
+
+  // P: the proxies' own count where known, else the candidate's per mesh.
+  {
+    SceneFeatures planned;
+    planned.Objects = 3.0;
+    Knobs k;
+    k.Spheres = 16;
+    const double before = ProxySpheres(planned, k);
+    planned.Spheres = 1.0;
+    ok &= Check(before == 48.0 && ProxySpheres(planned, k) == 1.0, "the time law's sphere count");
+  }
 
   // A candidate measured on one scene only is left out.
   std::vector<Measurement> extra = rows;
@@ -265,13 +297,12 @@ int TestAccuracyBudget(int, char*[])
       readRouted[1].Settings == onGPU,
     "CSV round trip with the route");
   std::string text = WriteMeasurements(routed);
-  const std::string old = text.substr(0, text.find(",route\n")) + "\n" +
-    text.substr(text.find('\n') + 1, text.find(",filter\n") - text.find('\n') - 1) + "\n";
-  ok &= Check(ReadMeasurements(old, readRouted, routeError) && readRouted.size() == 1 &&
-      readRouted[0].Settings.Backend == Route::Filter,
+  ok &= Check(ReadMeasurements(FirstFields(text, 17), readRouted, routeError) &&
+      readRouted.size() == 2 && readRouted[0].Settings.Backend == Route::Filter &&
+      readRouted[1].Settings.Backend == Route::Filter,
     "a CSV without the route column: the filter's");
   std::string wrongRoute = text;
-  wrongRoute.replace(wrongRoute.find(",mapper\n"), 7, ",gpu");
+  wrongRoute.replace(wrongRoute.find(",mapper,"), 8, ",gpu,");
   ok &= Check(!ReadMeasurements(wrongRoute, readRouted, routeError), "an unknown route refused");
   Model twoRoutes = model;
   twoRoutes.Candidates.push_back(model.Candidates[0]);
@@ -296,6 +327,66 @@ int TestAccuracyBudget(int, char*[])
   std::string order8 = twoRoutes.Write();
   order8.replace(order8.rfind("candidate 3 "), 12, "candidate 8 ");
   ok &= Check(!readTwo.Read(order8, routeError), "a mapper candidate of order 8 refused");
+  // The knobs the default grid keeps at their defaults, varied alone.
+  const std::vector<Knobs> defaults = DefaultGrid(), variations = VariationGrid();
+  bool distinct = variations.size() == 52;
+  for (std::size_t i = 0; i < variations.size(); ++i)
+  {
+    for (const Knobs& d : defaults)
+    {
+      distinct = distinct && !(variations[i] == d);
+    }
+    for (std::size_t j = 0; j < i; ++j)
+    {
+      distinct = distinct && !(variations[i] == variations[j]);
+    }
+  }
+  ok &= Check(distinct, "52 variations, none in the default grid, none twice");
+  Knobs varied = defaults[19]; // order 6 (bounce 4), 16 spheres, traced, shadowed
+  varied.ExpMethod = vtkPGIGISettings::EXP_OL;
+  varied.Blocking = vtkPGIGISettings::BLOCKING_PER_OBJECT;
+  varied.BrightLightRays = 4;
+  ok &= Check(varied.Describe() ==
+      "order 6 (bounce 4), 16 spheres, traced self-visibility, shadowed bounce, exp OL, "
+      "per-object blocking, 4 rays per bright light",
+    "a variation's description: " + varied.Describe());
+  vtkNew<vtkPGIGISettings> applied;
+  varied.Apply(applied);
+  ok &= Check(applied->GetExpMethod() == vtkPGIGISettings::EXP_OL &&
+      applied->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT &&
+      applied->GetBrightLightRays() == 4,
+    "a variation applied");
+  Measurement onVariation = rows.front();
+  onVariation.Settings = varied;
+  std::vector<Measurement> withVariation{ rows.front(), onVariation };
+  ok &= Check(ReadMeasurements(WriteMeasurements(withVariation), readRouted, routeError) &&
+      readRouted.size() == 2 && readRouted[0].Settings == rows.front().Settings &&
+      readRouted[1].Settings == varied,
+    "CSV round trip with the variations");
+  ok &= Check(
+    ReadMeasurements(FirstFields(WriteMeasurements(withVariation), 18), readRouted, routeError) &&
+      readRouted.size() == 2 && readRouted[1].Settings == defaults[19],
+    "a CSV without the variations' columns: their defaults");
+  std::string badMethod = WriteMeasurements(withVariation);
+  badMethod.replace(badMethod.find(",OL,"), 4, ",XY,");
+  ok &=
+    Check(!ReadMeasurements(badMethod, readRouted, routeError), "an unknown exp method refused");
+  Model withVaried = model;
+  withVaried.Candidates.push_back(model.Candidates[1]);
+  withVaried.Candidates.back().Settings = varied;
+  Model readVaried;
+  const std::string variedText = withVaried.Write();
+  ok &= Check(readVaried.Read(variedText, routeError) && readVaried.Candidates.size() == 4 &&
+      readVaried.Candidates[3].Settings == varied &&
+      variedText.find("filter exp=OL blocking=object bright_rays=4\n") != std::string::npos,
+    "model round trip with the variations");
+  for (const char* bad : { "exp=XY", "blocking=sphere", "bright_rays=0", "colour=red" })
+  {
+    std::string badText = variedText;
+    badText.replace(badText.find("exp=OL"), 6, bad);
+    ok &= Check(!readVaried.Read(badText, routeError), std::string("refused: ") + bad);
+  }
+
   // Which renderer the mapper's times describe.
   std::string why;
   ok &= Check(SoftwareRenderer("EGL, Mesa llvmpipe (LLVM 15.0.6, 256 bits)") &&
