@@ -24,15 +24,17 @@
  *  - ObjectId (1): the ObjectId property, unless the input has the array;
  *    the GI filter leaves the proxies of this object out;
  * and field data arrays
- *  - SelfBounceOffsets (points + 1 ids), SelfBounceTargets (ids) and
- *    SelfBounceWeights (floats): the bounce off the mesh onto itself as a
- *    sparse gather. Vertex i receives the sum over e in [Offsets[i],
- *    Offsets[i + 1]) of Weights[e] times the exit radiance at point
- *    Targets[e]: one entry per blocked ray (the hit triangle's nearest
- *    corner, weight 2 cos(theta) / Samples; a hit on a triangle's back, the
- *    unlit inside or a sheet's other side, blocks but brings no light),
- *    points hit twice merged. About
- *    12 bytes per entry (the bunny at 256 rays: 34 entries per vertex);
+ *  - SelfBounceOffsets (points + 1 ids), SelfBounceTargets (ids),
+ *    SelfBounceWeights (floats) and SelfBounceHitPoints (3 floats): the
+ *    bounce off the mesh onto itself as a sparse gather. Vertex i receives
+ *    the sum over e in [Offsets[i], Offsets[i + 1]) of Weights[e] times the
+ *    exit radiance at point Targets[e]: one entry per blocked ray (the hit
+ *    triangle's nearest corner, weight 2 cos(theta) / Samples; a hit on a
+ *    triangle's back, the unlit inside or a sheet's other side, blocks but
+ *    brings no light), points hit twice merged; HitPoints[e] is where the
+ *    largest of the hits merged into e lies (the GI filter lights that point
+ *    itself where a bright light's shadow edge runs past the corner). About
+ *    24 bytes per entry (the bunny at 256 rays: 34 entries per vertex);
  *  - SelfVisibilitySamples, SelfVisibilityBlockedFraction (rays blocked over
  *    rays traced).
  *

@@ -419,7 +419,8 @@ bool AddSelfVisibility(const SceneDescription& scene,
     vtksys::SystemTools::MakeDirectory(cacheDir);
   }
   const char* names[] = { "SelfLogVisibility", "SelfVisibilityRest", "ObjectId" };
-  const char* fieldNames[] = { "SelfBounceOffsets", "SelfBounceTargets", "SelfBounceWeights" };
+  const char* fieldNames[] = { "SelfBounceOffsets", "SelfBounceTargets", "SelfBounceWeights",
+    "SelfBounceHitPoints" };
   for (std::size_t k = 0; k < receivers.size() && k < scene.Objects.size(); ++k)
   {
     if (scene.Objects[k].Type != SceneObject::Kind::Mesh)
@@ -431,7 +432,7 @@ bool AddSelfVisibility(const SceneDescription& scene,
     const std::string cached = cacheDir.empty() ? std::string()
                                                 : cacheDir + "/self-visibility-" +
         Key(Describe(scene.Objects[k]) + '|' + std::to_string(n) + '|' + std::to_string(order) +
-          '|' + std::to_string(samples) + "|nearest-corner bounce, front hits") +
+          '|' + std::to_string(samples) + "|nearest-corner bounce, front hits, hit points") +
         ".vtp";
     vtkSmartPointer<vtkPolyData> arrays = Exists(cached) ? Read(cached) : nullptr;
     if (arrays && arrays->GetNumberOfPoints() != n)

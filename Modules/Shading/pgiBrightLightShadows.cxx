@@ -164,36 +164,50 @@ void BrightLightsFromRays(const BrightLightSet& lights, const Blockers& blockers
   const vtkPGIOccluder& occluder, const float p[3], const float n[3], float offset,
   BrightLightScratch& scratch, float rgb[3])
 {
+  BrightLightsFromRays(lights, blockers, occluder, 1, p, n, offset, scratch, rgb);
+}
+
+void BrightLightsFromRays(const BrightLightSet& lights, const Blockers& blockers,
+  const vtkPGIOccluder& occluder, int points, const float* p, const float* n, float offset,
+  BrightLightScratch& scratch, float* rgb)
+{
   const int rays = lights.Rays;
   scratch.Origins.clear();
   scratch.Directions.clear();
   scratch.Weights.clear();
   scratch.Light.clear();
-  const float o[3] = { p[0] + offset * n[0], p[1] + offset * n[1], p[2] + offset * n[2] };
-  for (std::size_t l = 0; l < lights.Lights.size(); ++l)
+  scratch.Point.clear();
+  for (int j = 0; j < points; ++j)
   {
-    const float* dirs = &lights.Directions[3 * rays * l];
-    for (int k = 0; k < rays; ++k)
+    const float* pj = &p[3 * j];
+    const float* nj = &n[3 * j];
+    const float o[3] = { pj[0] + offset * nj[0], pj[1] + offset * nj[1], pj[2] + offset * nj[2] };
+    for (std::size_t l = 0; l < lights.Lights.size(); ++l)
     {
-      const float* w = &dirs[3 * k];
-      const float cosine = n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
-      if (cosine <= 0.0f)
+      const float* dirs = &lights.Directions[3 * rays * l];
+      for (int k = 0; k < rays; ++k)
       {
-        continue;
+        const float* w = &dirs[3 * k];
+        const float cosine = nj[0] * w[0] + nj[1] * w[1] + nj[2] * w[2];
+        if (cosine <= 0.0f)
+        {
+          continue;
+        }
+        bool blocked = false;
+        for (std::size_t q = 0; q < blockers.Planes() && !blocked; ++q)
+        {
+          blocked = PlaneBlocks(blockers, q, pj, w, offset);
+        }
+        if (blocked)
+        {
+          continue;
+        }
+        scratch.Origins.insert(scratch.Origins.end(), o, o + 3);
+        scratch.Directions.insert(scratch.Directions.end(), w, w + 3);
+        scratch.Weights.push_back(cosine);
+        scratch.Light.push_back(static_cast<int>(l));
+        scratch.Point.push_back(j);
       }
-      bool blocked = false;
-      for (std::size_t q = 0; q < blockers.Planes() && !blocked; ++q)
-      {
-        blocked = PlaneBlocks(blockers, q, p, w, offset);
-      }
-      if (blocked)
-      {
-        continue;
-      }
-      scratch.Origins.insert(scratch.Origins.end(), o, o + 3);
-      scratch.Directions.insert(scratch.Directions.end(), w, w + 3);
-      scratch.Weights.push_back(cosine);
-      scratch.Light.push_back(static_cast<int>(l));
     }
   }
   const int count = static_cast<int>(scratch.Weights.size());
@@ -209,9 +223,10 @@ void BrightLightsFromRays(const BrightLightSet& lights, const Blockers& blockers
     if (!scratch.Blocked[i])
     {
       const float* scale = &lights.Scale[3 * scratch.Light[i]];
+      float* out = &rgb[3 * scratch.Point[i]];
       for (int c = 0; c < 3; ++c)
       {
-        rgb[c] += scale[c] * scratch.Weights[i];
+        out[c] += scale[c] * scratch.Weights[i];
       }
     }
   }

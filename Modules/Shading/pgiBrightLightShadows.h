@@ -56,7 +56,7 @@ struct PROXYGISHADING_EXPORT BrightLightSet
 struct BrightLightScratch
 {
   std::vector<float> Origins, Directions, Weights, Points;
-  std::vector<int> Light;
+  std::vector<int> Light, Point;
   std::vector<unsigned char> Blocked;
 };
 
@@ -84,6 +84,12 @@ PROXYGISHADING_EXPORT void BrightLightsFromProxies(const BrightLightSet& lights,
 PROXYGISHADING_EXPORT void BrightLightsFromRays(const BrightLightSet& lights,
   const Blockers& blockers, const vtkPGIOccluder& occluder, const float p[3], const float n[3],
   float offset, BrightLightScratch& scratch, float rgb[3]);
+
+/// The same at `points` points at once (p, n and rgb: 3 floats each), their
+/// rays traced together.
+PROXYGISHADING_EXPORT void BrightLightsFromRays(const BrightLightSet& lights,
+  const Blockers& blockers, const vtkPGIOccluder& occluder, int points, const float* p,
+  const float* n, float offset, BrightLightScratch& scratch, float* rgb);
 
 /// `count` cosine-weighted directions about +z (stratified), 3 floats each.
 PROXYGISHADING_EXPORT void CosineHemisphere(int count, float* directions);

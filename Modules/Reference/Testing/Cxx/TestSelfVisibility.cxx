@@ -14,6 +14,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
@@ -173,6 +174,38 @@ int TestSelfVisibility(int, char*[])
     std::printf("well floor, %d rays: bounce weight %.5f (exact %.5f)\n", samples, sum,
       std::cos(a) * std::cos(a));
     PGI_NEAR(sum, std::cos(a) * std::cos(a), samples >= 4096 ? 2e-3 : 1e-2);
+    // Where the hits lie: on the wall (a 256-gon of radius R, 0 <= z <= H),
+    // in a triangle of their target corner (its quads span the height).
+    auto* hits = vtkFloatArray::SafeDownCast(out->GetFieldData()->GetArray("SelfBounceHitPoints"));
+    auto* targets =
+      vtkIdTypeArray::SafeDownCast(out->GetFieldData()->GetArray("SelfBounceTargets"));
+    PGI_CHECK(hits && targets && hits->GetNumberOfComponents() == 3 &&
+      hits->GetNumberOfTuples() == weights->GetNumberOfTuples());
+    if (hits && targets)
+    {
+      const double inner = radius * std::cos(sh::Pi / 256), reach = std::hypot(height, 0.025);
+      double worstRadius = 0.0, worstHeight = 0.0, farthest = 0.0;
+      vtkIdType inside = 0; // between the rims, not at a corner (grazing rays hit low)
+      const vtkIdType entries = offsets->GetValue(centre + 1) - offsets->GetValue(centre);
+      for (vtkIdType e = offsets->GetValue(centre); e < offsets->GetValue(centre + 1); ++e)
+      {
+        double h[3], corner[3];
+        hits->GetTuple(e, h);
+        mesh->GetPoint(targets->GetValue(e), corner);
+        const double r = std::hypot(h[0], h[1]);
+        worstRadius = std::max(worstRadius, std::max(inner - r, r - radius));
+        worstHeight = std::max(worstHeight, std::max(-h[2], h[2] - height));
+        farthest = std::max(farthest, std::sqrt(vtkMath::Distance2BetweenPoints(h, corner)));
+        inside += h[2] > 1e-3 && h[2] < height - 1e-3 ? 1 : 0;
+      }
+      std::printf("well floor, %d rays: hit points off the wall by %.2g (radius), %.2g (height); "
+                  "%.4f from their corner (a quad's diagonal %.4f)\n",
+        samples, worstRadius, worstHeight, farthest, reach);
+      PGI_BELOW(worstRadius, 1e-5);
+      PGI_BELOW(worstHeight, 1e-5);
+      PGI_BELOW(farthest, reach);
+      PGI_CHECK(entries > 0 && inside >= 0.9 * entries);
+    }
     PGI_CHECK(FieldValue(out, "SelfVisibilityBlockedFraction") > 0.0);
   }
 

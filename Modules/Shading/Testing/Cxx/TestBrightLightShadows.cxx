@@ -218,6 +218,49 @@ int TestBrightLightShadows(int, char*[])
   rayRoute->GetSettings()->SetBrightLightRays(32);
   rayRoute->Update();
   PGI_CHECK(occluder->GetNumberOfBuilds() == 1);
+  // Many points at once trace their rays together, with the same floats as
+  // one point at a time: ground points in and out of the shadow, one facing
+  // away from the sun, one turned sideways.
+  {
+    BrightLightSet set;
+    set.Set({ sun }, 16);
+    Blockers ground;
+    const float origin[3] = { 0, 0, 0 }, normal[3] = { 0, 0, 1 };
+    ground.AddPlane(origin, normal);
+    std::string error;
+    PGI_CHECK(occluder->Prepare(error));
+    const int count = 37; // two full packets of 16 rays and a partial one per light
+    std::vector<float> points(3 * count), normals(3 * count), together(3 * count, 0.0f);
+    for (int j = 0; j < count; ++j)
+    {
+      points[3 * j] = -1.5f + 0.08f * j;
+      points[3 * j + 1] = -0.5f + 0.02f * j;
+      points[3 * j + 2] = 0.0f;
+      normals[3 * j + 2] = j == 5 ? -1.0f : 1.0f;
+      normals[3 * j] = j == 9 ? 1.0f : 0.0f;
+      normals[3 * j + 2] = j == 9 ? 0.0f : normals[3 * j + 2];
+    }
+    BrightLightScratch scratch;
+    BrightLightsFromRays(set, ground, *occluder, count, points.data(), normals.data(), 1e-4f,
+      scratch, together.data());
+    int same = 0, bright = 0, dark = 0;
+    for (int j = 0; j < count; ++j)
+    {
+      float alone[3] = { 0, 0, 0 };
+      BrightLightsFromRays(
+        set, ground, *occluder, &points[3 * j], &normals[3 * j], 1e-4f, scratch, alone);
+      same += alone[0] == together[3 * j] && alone[1] == together[3 * j + 1] &&
+          alone[2] == together[3 * j + 2]
+        ? 1
+        : 0;
+      bright += alone[0] > 0.5 * lit ? 1 : 0;
+      dark += alone[0] == 0.0f ? 1 : 0;
+    }
+    std::printf("%d points at once: %d of them as one at a time (%d lit, %d dark)\n", count, same,
+      bright, dark);
+    PGI_CHECK(same == count);
+    PGI_CHECK(bright > 0 && dark > 1);
+  }
   // The SH alone blurs the sun: far off.
   auto shOnly = shade(false, nullptr, 16);
   compare(shOnly, worst, rms);
