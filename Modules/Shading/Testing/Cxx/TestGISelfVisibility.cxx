@@ -19,6 +19,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
+#include "vtkSmartPointer.h"
 #include "vtkTransform.h"
 
 #include <cmath>
@@ -26,6 +27,28 @@
 
 namespace
 {
+// A copy of `mesh` moved by `motion`, points and normals (if any) alike.
+vtkSmartPointer<vtkPolyData> Moved(vtkPolyData* mesh, vtkTransform* motion)
+{
+  auto moved = vtkSmartPointer<vtkPolyData>::New();
+  moved->DeepCopy(mesh);
+  vtkDataArray* normals = moved->GetPointData()->GetNormals();
+  for (vtkIdType i = 0; i < moved->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    moved->GetPoint(i, p);
+    motion->TransformPoint(p, q);
+    moved->GetPoints()->SetPoint(i, q);
+    if (normals)
+    {
+      normals->GetTuple(i, p);
+      motion->TransformNormal(p, q);
+      normals->SetTuple(i, q);
+    }
+  }
+  return moved;
+}
+
 double Error(vtkDataArray* a, vtkDataArray* b)
 {
   double e = 0.0, s = 0.0;
@@ -154,23 +177,10 @@ int TestGISelfVisibility(int, char*[])
     // Moved rigidly (turned 40 degrees about a tilted axis, shifted): the
     // logs turn with it, so under the uniform sky the picture is the same.
     {
-      vtkNew<vtkPolyData> turned;
-      turned->DeepCopy(self->GetOutput());
       vtkNew<vtkTransform> motion;
       motion->Translate(0.3, -0.2, 0.5);
       motion->RotateWXYZ(40.0, 1.0, 2.0, 0.5);
-      vtkDataArray* normalsOf = turned->GetPointData()->GetNormals();
-      for (vtkIdType i = 0; i < turned->GetNumberOfPoints(); ++i)
-      {
-        double p[3], q[3], nrm[3], m[3];
-        turned->GetPoint(i, p);
-        motion->TransformPoint(p, q);
-        turned->GetPoints()->SetPoint(i, q);
-        normalsOf->GetTuple(i, nrm);
-        motion->TransformNormal(nrm, m);
-        normalsOf->SetTuple(i, m);
-      }
-      auto moved = shade(turned, true);
+      auto moved = shade(Moved(self->GetOutput(), motion), true);
       const double change =
         Error(moved->GetOutput()->GetPointData()->GetArray("Radiance"), t->GetArray("Radiance"));
       std::printf("%s turned 40 degrees: radiance changed by %.2e relative RMS\n", c.Mesh, change);
@@ -208,15 +218,7 @@ int TestGISelfVisibility(int, char*[])
     place->RotateX(90.0);
     place->Scale(1.1, 1.1, 1.1);
     reader->Update();
-    vtkNew<vtkPolyData> placed;
-    placed->DeepCopy(reader->GetOutput());
-    for (vtkIdType i = 0; i < placed->GetNumberOfPoints(); ++i)
-    {
-      double p[3], q[3];
-      placed->GetPoint(i, p);
-      place->TransformPoint(p, q);
-      placed->GetPoints()->SetPoint(i, q);
-    }
+    vtkSmartPointer<vtkPolyData> placed = Moved(reader->GetOutput(), place);
     vtkNew<vtkPolyDataNormals> normals;
     normals->SetInputData(placed);
     normals->SplittingOff();
@@ -249,21 +251,9 @@ int TestGISelfVisibility(int, char*[])
     auto still = shade(self->GetOutput(), 0.0);
     PGI_CHECK(pgitest::Says(still->GetPlan(), "bright lights: 1 taken out of the map"));
     PGI_CHECK(pgitest::Says(still->GetPlan(), "past a bright light's shadow edge lit where"));
-    vtkNew<vtkPolyData> turned;
-    turned->DeepCopy(self->GetOutput());
     vtkNew<vtkTransform> motion;
     motion->RotateZ(90.0);
-    vtkDataArray* normalsOf = turned->GetPointData()->GetNormals();
-    for (vtkIdType i = 0; i < turned->GetNumberOfPoints(); ++i)
-    {
-      double p[3], q[3], nrm[3], m[3];
-      turned->GetPoint(i, p);
-      motion->TransformPoint(p, q);
-      turned->GetPoints()->SetPoint(i, q);
-      normalsOf->GetTuple(i, nrm);
-      motion->TransformNormal(nrm, m);
-      normalsOf->SetTuple(i, m);
-    }
+    vtkSmartPointer<vtkPolyData> turned = Moved(self->GetOutput(), motion);
     auto moved = shade(turned, 90.0);
     auto movedOther = shade(turned, -90.0);
     PGI_CHECK(pgitest::Says(moved->GetPlan(), "moved rigidly"));
