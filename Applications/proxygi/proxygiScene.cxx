@@ -114,6 +114,15 @@ struct RenderOptions
 bool ParseRenderOptions(const Args& args, RenderOptions& o)
 {
   bool ok = true;
+  // Output names before the renderer probe: a refusal touches no GL.
+  o.Output = Option(args, "-o", "proxygi-render.png");
+  o.ReferencePNG = Option(args, "--reference-png", "");
+  if (!HasExtension("render", "-o", o.Output, { ".png" }) ||
+    (!o.ReferencePNG.empty() &&
+      !HasExtension("render", "--reference-png", o.ReferencePNG, { ".png" })))
+  {
+    return false;
+  }
   o.Mode = Option(args, "--mode", "auto");
   o.BudgetModel = Option(args, "--budget-model", "");
   o.CheckSpp = static_cast<int>(NumberOption(args, "--check", 0, ok));
@@ -199,17 +208,9 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   o.ProxyFit = Option(args, "--proxy-fit", "occlusion");
   o.PixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
   o.Exposure = NumberOption(args, "--exposure", 0.0, ok);
-  o.Output = Option(args, "-o", "proxygi-render.png");
   o.Cache = Option(args, "--cache", "proxygi-cache");
   o.Vtp = Option(args, "--vtp", "");
-  o.ReferencePNG = Option(args, "--reference-png", "");
   o.NoError = Flag(args, "--no-error");
-  if (!HasExtension("render", "-o", o.Output, { ".png" }) ||
-    (!o.ReferencePNG.empty() &&
-      !HasExtension("render", "--reference-png", o.ReferencePNG, { ".png" })))
-  {
-    return false;
-  }
   o.PixelError = o.ImageSpace() || Flag(args, "--pixel-error");
   if (!ok)
   {
@@ -589,17 +590,19 @@ double TimeImageSpace(vtkRenderWindow* window, vtkPGIImageSpaceGIPass* pass, int
 
 int RunRenderScene(const Args& args, const std::string& scenePath)
 {
-  RenderOptions o;
-  if (!ParseRenderOptions(args, o))
-  {
-    return 2;
-  }
+  // The scene first: a refusal touches no GL (the options probe the
+  // renderer for --mode auto).
   SceneDescription scene = DefaultScene();
   std::string error;
   if (!scenePath.empty() && !LoadScene(scenePath, scene, error))
   {
     vtkLogF(ERROR, "proxygi render: %s", error.c_str());
     return 1;
+  }
+  RenderOptions o;
+  if (!ParseRenderOptions(args, o))
+  {
+    return 2;
   }
   const std::string size = Option(args, "--size", "");
   if (!size.empty() && std::sscanf(size.c_str(), "%dx%d", &scene.Size[0], &scene.Size[1]) != 2)
