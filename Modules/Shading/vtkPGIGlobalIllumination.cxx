@@ -255,19 +255,18 @@ bool ValidBounce(vtkPolyData* receivers, SelfVisibilityInput& self)
   if (self.HitPoints)
   {
     const float* values = points->GetPointer(0);
-    float sum = 0.0f; // NaN or Inf anywhere makes it NaN
-    for (vtkIdType v = 0; v < points->GetNumberOfValues(); ++v)
-    {
-      sum += 0.0f * values[v];
-    }
-    self.HitPoints = sum == 0.0f ? points : nullptr;
+    self.HitPoints = std::all_of(values, values + points->GetNumberOfValues(),
+                       [](float v) { return std::isfinite(v); })
+      ? points
+      : nullptr;
   }
   return true;
 }
 
-// The rotation R and the largest residual |R (q - qc) + pc - p| of the best
-// rigid fit of the rest points q onto the points p (Kabsch, by SVD).
-double RigidFit(vtkPolyData* receivers, vtkDataArray* rest, double R[9])
+// The rotation R, the shift t = pc - R qc and the largest residual
+// |R q + t - p| of the best rigid fit of the rest points q onto the points p
+// (Kabsch, by SVD).
+double RigidFit(vtkPolyData* receivers, vtkDataArray* rest, double R[9], double t[3])
 {
   const vtkIdType n = receivers->GetNumberOfPoints();
   double pc[3] = { 0, 0, 0 }, qc[3] = { 0, 0, 0 };
@@ -305,6 +304,10 @@ double RigidFit(vtkPolyData* receivers, vtkDataArray* rest, double R[9])
       R[3 * i + j] = VT[0][i] * U[j][0] + VT[1][i] * U[j][1] + VT[2][i] * U[j][2];
     }
   }
+  for (int a = 0; a < 3; ++a)
+  {
+    t[a] = pc[a] - (R[3 * a] * qc[0] + R[3 * a + 1] * qc[1] + R[3 * a + 2] * qc[2]);
+  }
   double residual = 0.0;
   for (vtkIdType i = 0; i < n; ++i)
   {
@@ -313,8 +316,7 @@ double RigidFit(vtkPolyData* receivers, vtkDataArray* rest, double R[9])
     rest->GetTuple(i, q);
     for (int a = 0; a < 3; ++a)
     {
-      const double fitted = R[3 * a] * (q[0] - qc[0]) + R[3 * a + 1] * (q[1] - qc[1]) +
-        R[3 * a + 2] * (q[2] - qc[2]) + pc[a];
+      const double fitted = R[3 * a] * q[0] + R[3 * a + 1] * q[1] + R[3 * a + 2] * q[2] + t[a];
       d2 += (fitted - p[a]) * (fitted - p[a]);
     }
     residual = std::max(residual, std::sqrt(d2));
@@ -377,7 +379,8 @@ SelfVisibilityInput FindSelfVisibility(vtkPolyData* receivers, bool wanted, int 
       moved = std::max(moved, std::sqrt(vtkMath::Distance2BetweenPoints(p, q)));
     }
     double R[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-    const double residual = moved <= tolerance ? 0.0 : RigidFit(receivers, rest, R);
+    double shift[3] = { 0, 0, 0 };
+    const double residual = moved <= tolerance ? 0.0 : RigidFit(receivers, rest, R, shift);
     if (!(residual <= tolerance))
     {
       line << "the receivers moved or deformed since their visibility was traced (up to " << moved
@@ -387,13 +390,7 @@ SelfVisibilityInput FindSelfVisibility(vtkPolyData* receivers, bool wanted, int 
     {
       self.Logs = floats->GetPointer(0);
       std::copy_n(R, 9, self.Turn);
-      double p0[3], q0[3];
-      receivers->GetPoint(0, p0);
-      rest->GetTuple(0, q0);
-      for (int c = 0; c < 3; ++c)
-      {
-        self.Shift[c] = p0[c] - (R[3 * c] * q0[0] + R[3 * c + 1] * q0[1] + R[3 * c + 2] * q0[2]);
-      }
+      std::copy_n(shift, 3, self.Shift);
       if (moved > tolerance)
       {
         // Moved rigidly: every log turns by R, one a2 x a2 matrix for all.
