@@ -23,6 +23,7 @@
 #include "vtkSphereSource.h"
 #include "vtkTriangleFilter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -229,16 +230,15 @@ int TestBrightLightShadows(int, char*[])
     ground.AddPlane(origin, normal);
     std::string error;
     PGI_CHECK(occluder->Prepare(error));
-    const int count = 37; // two full packets of 16 rays and a partial one per light
+    const int count = 37; // their rays share packets of 16, the last one partly idle
     std::vector<float> points(3 * count), normals(3 * count), together(3 * count, 0.0f);
     for (int j = 0; j < count; ++j)
     {
       points[3 * j] = -1.5f + 0.08f * j;
       points[3 * j + 1] = -0.5f + 0.02f * j;
       points[3 * j + 2] = 0.0f;
-      normals[3 * j + 2] = j == 5 ? -1.0f : 1.0f;
-      normals[3 * j] = j == 9 ? 1.0f : 0.0f;
-      normals[3 * j + 2] = j == 9 ? 0.0f : normals[3 * j + 2];
+      const float up[3] = { 0, 0, 1 }, down[3] = { 0, 0, -1 }, side[3] = { 1, 0, 0 };
+      std::copy_n(j == 5 ? down : j == 9 ? side : up, 3, &normals[3 * j]);
     }
     BrightLightScratch scratch;
     BrightLightsFromRays(set, ground, *occluder, count, points.data(), normals.data(), 1e-4f,
