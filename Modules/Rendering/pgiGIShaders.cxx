@@ -153,6 +153,10 @@ void UploadPlaneLightMaps(
   }
   std::vector<float> grid(4 * static_cast<std::size_t>(width) * std::max(1, rows), 0.0f);
   std::vector<float> table(8 * static_cast<std::size_t>(directions) * planes, 0.0f);
+  // A plane without a sky table (no environment) keeps zeros: no sky past it.
+  const int skyWidth = 3 * (PlaneLightMap::SkyHeights + 1);
+  std::vector<float> sky(
+    4 * static_cast<std::size_t>(skyWidth) * PlaneLightMap::SkyBins * planes, 0.0f);
   int first = 0;
   for (int k = 0; k < planes; ++k)
   {
@@ -183,14 +187,29 @@ void UploadPlaneLightMaps(
       float* b = &table[4 * (static_cast<std::size_t>(2 * k + 1) * directions + q)];
       std::copy_n(map.GetDirection(q), 3, a);
       a[3] = map.GetStepU(q);
-      std::copy_n(map.GetSky(q), 3, b);
       b[3] = map.GetStepV(q);
     }
     gl.Points += columns * mapRows;
+    const float* from = map.GetSkyTable();
+    for (int b = 0; from && b < PlaneLightMap::SkyBins; ++b)
+    {
+      for (int j = 0; j <= PlaneLightMap::SkyHeights; ++j)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          const float* t =
+            &from[9 * (static_cast<std::size_t>(b) * (PlaneLightMap::SkyHeights + 1) + j) + 3 * a];
+          std::copy_n(t, 3,
+            &sky[4 *
+              ((static_cast<std::size_t>(k) * PlaneLightMap::SkyBins + b) * skyWidth + 3 * j + a)]);
+        }
+      }
+    }
   }
   gl.Grid = FloatTexture(window, width, std::max(1, rows), 4, grid);
   gl.Table = FloatTexture(window, directions, 2 * planes, 4, table);
-  gl.Directions = gl.Grid && gl.Table ? directions : 0;
+  gl.Sky = FloatTexture(window, skyWidth, PlaneLightMap::SkyBins * planes, 4, sky);
+  gl.Directions = gl.Grid && gl.Table && gl.Sky ? directions : 0;
 }
 
 void BindPlaneLightMaps(vtkShaderProgram* program, PlaneLightMapsGL& gl)
@@ -202,8 +221,13 @@ void BindPlaneLightMaps(vtkShaderProgram* program, PlaneLightMapsGL& gl)
   }
   gl.Grid->Activate();
   gl.Table->Activate();
+  gl.Sky->Activate();
   program->SetUniformi("pgiPlaneMapGrid", gl.Grid->GetTextureUnit());
   program->SetUniformi("pgiPlaneMapTable", gl.Table->GetTextureUnit());
+  program->SetUniformi("pgiPlaneMapSky", gl.Sky->GetTextureUnit());
+  program->SetUniformi("pgiPlaneSkyBins", PlaneLightMap::SkyBins);
+  program->SetUniformi("pgiPlaneSkyHeights", PlaneLightMap::SkyHeights);
+  program->SetUniformi("pgiPlaneSkyRows", PlaneLightMap::SkyRows);
   program->SetUniform3fv("pgiPlaneMapU", MaxPlanes, gl.U.data());
   program->SetUniform3fv("pgiPlaneMapV", MaxPlanes, gl.V.data());
   program->SetUniform4fv("pgiPlaneMapFrame", MaxPlanes, gl.Frame.data());
@@ -213,7 +237,7 @@ void BindPlaneLightMaps(vtkShaderProgram* program, PlaneLightMapsGL& gl)
 
 void FreePlaneLightMaps(vtkWindow* window, PlaneLightMapsGL& gl)
 {
-  for (auto* texture : { gl.Grid.Get(), gl.Table.Get() })
+  for (auto* texture : { gl.Grid.Get(), gl.Table.Get(), gl.Sky.Get() })
   {
     if (texture)
     {
@@ -229,6 +253,7 @@ void ReleasePlaneLightMaps(PlaneLightMapsGL& gl)
   {
     gl.Grid->Deactivate();
     gl.Table->Deactivate();
+    gl.Sky->Deactivate();
   }
 }
 

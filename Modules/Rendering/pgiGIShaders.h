@@ -81,13 +81,14 @@ PROXYGIRENDERING_EXPORT void UploadProxyAlbedos(vtkOpenGLRenderWindow* window,
 /**
  * The planes' light maps (BuildPlaneLightMaps) as pgiPlaneLightScale in the
  * GI mapper's compute shader reads them: the grids stacked in one float
- * texture, the look-up directions (world vector, steps, sky) in another,
- * and the per-plane uniforms (MaxPlanes each, zero-padded).
+ * texture, the look-up directions (world vector, steps) in another, the
+ * sky past the planes' edges (SetSky's tables) in a third, and the
+ * per-plane uniforms (MaxPlanes each, zero-padded).
  */
 struct PROXYGIRENDERING_EXPORT PlaneLightMapsGL
 {
   int Directions = 0; // 0: no maps (one plane point)
-  vtkSmartPointer<vtkTextureObject> Grid, Table;
+  vtkSmartPointer<vtkTextureObject> Grid, Table, Sky;
   std::vector<float> U, V, Frame, Size, Dual; // 3, 3, 4, 4, 4 per plane
   int Points = 0;
 };

@@ -65,8 +65,6 @@ void PlaneLightMap::Layout(const Blockers& blockers, int plane,
     }
   }
 
-  this->Sky.assign(3 * static_cast<std::size_t>(count), 0.0f);
-
   // The extent: extent coordinates (a, b) of plane coordinates (x, y) are
   // (x, y) . Dual1 and . Dual2, the inverse of [e1 e2] in (U, V).
   const float* e = &blockers.PlaneExtent[6 * plane];
@@ -188,44 +186,224 @@ inline void Bilinear(const float* grid, int columns, int rows, float fu, float f
 }
 }
 
+bool PlaneLightMap::SkyKey::operator==(const SkyKey& o) const
+{
+  return this->Texels == o.Texels && this->Checksum == o.Checksum && this->Rotation == o.Rotation &&
+    this->Width == o.Width && this->Height == o.Height && this->Coefficients == o.Coefficients &&
+    std::equal(this->Frame, this->Frame + 9, o.Frame);
+}
+
 void PlaneLightMap::SetSky(const EnvironmentMap& map)
 {
-  // Each direction stands for 2 pi / K of the half-space: a cone of that
-  // solid angle about it, sampled on a Fibonacci spiral of equal areas.
-  const int count = static_cast<int>(this->StepU.size()), samples = 16;
-  if (count == 0)
+  const double pi = 3.14159265358979323846, binWidth = 2.0 * pi / SkyBins;
+  // The bins' axes follow the extent, which the table's key leaves out.
+  this->SkyAxes.resize(4 * SkyBins);
+  for (int b = 0; b < SkyBins; ++b)
+  {
+    const float phi = static_cast<float>(binWidth * (b + 0.5));
+    const float c = std::cos(phi), sn = std::sin(phi);
+    const float axes[4] = { c, sn, c * this->Dual1[0] + sn * this->Dual1[1],
+      c * this->Dual2[0] + sn * this->Dual2[1] };
+    std::copy_n(axes, 4, &this->SkyAxes[4 * b]);
+  }
+  SkyKey key;
+  key.Texels = map.GetRGB().data();
+  key.Rotation = map.GetRotation();
+  key.Width = map.GetWidth();
+  key.Height = map.GetHeight();
+  key.Coefficients = this->Coefficients;
+  // A map set anew in the same buffer: a sparse checksum of its texels.
+  const std::vector<float>& texels = map.GetRGB();
+  const std::size_t stride = std::max<std::size_t>(1, texels.size() / 4096);
+  for (std::size_t i = 0; i < texels.size(); i += stride)
+  {
+    key.Checksum += static_cast<double>(texels[i]) * static_cast<double>(i % 7919 + 1);
+  }
+  std::copy_n(this->U, 3, key.Frame);
+  std::copy_n(this->V, 3, key.Frame + 3);
+  std::copy_n(this->Normal, 3, key.Frame + 6);
+  if (!this->SkyTable.empty() && key == this->SkyBuiltFor)
   {
     return;
   }
-  const double pi = 3.14159265358979323846, golden = (1.0 + std::sqrt(5.0)) / 2.0;
-  const double cosCone = 1.0 - 1.0 / count; // 2 pi (1 - cos) = 2 pi / K
-  for (int k = 0; k < count; ++k)
+  constexpr int Heights = SkyHeights + 1, AlongPhi = 8, AlongS = 4;
+  const double step = 1.0 / SkyHeights;
+  const double cell = (binWidth / AlongPhi) * (step / AlongS);
+  this->SkyTable.assign(9 * static_cast<std::size_t>(SkyBins) * Heights, 0.0f);
+  const auto world = [this](double c, double sn, double s, double w[3])
   {
-    const double w[3] = { this->Directions[3 * k], this->Directions[3 * k + 1],
-      this->Directions[3 * k + 2] };
-    double a[3], b[3];
-    FrameAbout(w, a, b);
-    double sum[3] = { 0, 0, 0 };
-    for (int q = 0; q < samples; ++q)
+    const double side = std::sqrt(std::max(0.0, 1.0 - s * s));
+    for (int k = 0; k < 3; ++k)
     {
-      const double z = 1.0 - (1.0 - cosCone) * (q + 0.5) / samples;
-      const double r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * pi * q / golden;
-      double d[3];
-      for (int c = 0; c < 3; ++c)
+      w[k] = side * (c * this->U[k] + sn * this->V[k]) - s * this->Normal[k];
+    }
+  };
+  vtkSMPTools::For(0, SkyBins,
+    [&](vtkIdType first, vtkIdType last)
+    {
+      for (vtkIdType b = first; b < last; ++b)
       {
-        d[c] = z * w[c] + r * (std::cos(phi) * a[c] + std::sin(phi) * b[c]);
+        double sum[9] = { 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+        float* row = &this->SkyTable[9 * static_cast<std::size_t>(b) * Heights];
+        for (int j = 0; j < SkyHeights; ++j)
+        {
+          for (int q = 0; q < AlongPhi * AlongS; ++q)
+          {
+            const double phi =
+              binWidth * (static_cast<double>(b) + (q % AlongPhi + 0.5) / AlongPhi);
+            const double s = step * (j + (q / AlongPhi + 0.5) / AlongS);
+            const double c = std::cos(phi), sn = std::sin(phi), side = std::sqrt(1.0 - s * s);
+            double w[3];
+            world(c, sn, s, w);
+            float rgb[3];
+            map.Lookup(w, rgb);
+            const double local[3] = { side * c, side * sn, -s };
+            for (int a = 0; a < 3; ++a)
+            {
+              for (int ch = 0; ch < 3; ++ch)
+              {
+                sum[3 * a + ch] += cell * local[a] * rgb[ch];
+              }
+            }
+          }
+          for (int k = 0; k < 9; ++k)
+          {
+            row[9 * (j + 1) + k] = static_cast<float>(sum[k]);
+          }
+        }
       }
-      float rgb[3];
-      map.Lookup(d, rgb);
-      for (int c = 0; c < 3; ++c)
+    });
+  this->SkyBasis.assign(static_cast<std::size_t>(this->Coefficients) * SkyBins * SkyRows, 0.0f);
+  const int order = static_cast<int>(std::lround(std::sqrt(this->Coefficients)));
+  for (int b = 0; b < SkyBins && order > 0; ++b)
+  {
+    const double phi = binWidth * (b + 0.5);
+    for (int r = 0; r < SkyRows; ++r)
+    {
+      double w[3];
+      world(std::cos(phi), std::sin(phi), (r + 0.5) / SkyRows, w);
+      sh::EvaluateBasis(order, static_cast<float>(w[0]), static_cast<float>(w[1]),
+        static_cast<float>(w[2]), &this->SkyBasis[this->Coefficients * (b * SkyRows + r)]);
+    }
+  }
+  this->SkyBuiltFor = key;
+}
+
+void PlaneLightMap::SkyPastEdges(
+  float x, float y, float h, const float n[3], const float* g, float gap[3]) const
+{
+  gap[0] = gap[1] = gap[2] = 0.0f;
+  if (!this->Bounded || this->SkyTable.empty() || !(h > 0.0f))
+  {
+    return;
+  }
+  constexpr int Heights = SkyHeights + 1;
+  const float pi = 3.14159265358979323846f;
+  const float nl[3] = { Dot(n, this->U), Dot(n, this->V), Dot(n, this->Normal) };
+  const float a1 = x * this->Dual1[0] + y * this->Dual1[1];
+  const float a2 = x * this->Dual2[0] + y * this->Dual2[1];
+  const float big = std::numeric_limits<float>::max();
+  // The table at s in [0, 1], linear between heights: 9 floats.
+  const auto at = [](const float* row, float s, float out[9])
+  {
+    const float f = std::min(1.0f, std::max(0.0f, s)) * SkyHeights;
+    const int j = std::min(SkyHeights - 1, static_cast<int>(f));
+    const float t = f - static_cast<float>(j);
+    const float* lo = &row[9 * j];
+    for (int k = 0; k < 9; ++k)
+    {
+      out[k] = lo[k] + t * (lo[9 + k] - lo[k]);
+    }
+  };
+  float sum[3] = { 0, 0, 0 };
+  for (int b = 0; b < SkyBins; ++b)
+  {
+    const float c = this->SkyAxes[4 * b], sn = this->SkyAxes[4 * b + 1];
+    // Where n.w > 0 along the bin's centre: n.w = A cos e - m sin e changes
+    // sign at most once over the quarter turn from the horizon down.
+    const float along = nl[0] * c + nl[1] * sn, m = nl[2];
+    const bool atHorizon = along > 0.0f, atNadir = m < 0.0f;
+    if (!atHorizon && !atNadir)
+    {
+      continue;
+    }
+    float lo = 0.0f, hi = 1.0f;
+    if (atHorizon != atNadir)
+    {
+      (atHorizon ? hi : lo) = std::abs(along) / std::sqrt(along * along + m * m);
+    }
+    // The rays' feet x + t (c, sn), t >= 0, inside the extent: [in, out].
+    float in = 0.0f, out = big;
+    for (int q = 0; q < 2; ++q)
+    {
+      const float a = q == 0 ? a1 : a2, da = this->SkyAxes[4 * b + 2 + q];
+      if (da == 0.0f)
       {
-        sum[c] += rgb[c];
+        if (std::abs(a) > 1.0f)
+        {
+          in = big;
+        }
+        continue;
+      }
+      const float t1 = (-1.0f - a) / da, t2 = (1.0f - a) / da;
+      in = std::max(in, std::min(t1, t2));
+      out = std::min(out, std::max(t1, t2));
+    }
+    // s = h / sqrt(h^2 + t^2): from the horizon (t endless) down to the foot.
+    float ranges[4];
+    int count = 0;
+    if (!(in <= out))
+    {
+      ranges[0] = 0.0f;
+      ranges[1] = 1.0f;
+      count = 1;
+    }
+    else
+    {
+      ranges[0] = 0.0f;
+      ranges[1] = out < big ? h / std::sqrt(h * h + out * out) : 0.0f;
+      count = 1;
+      if (in > 0.0f)
+      {
+        ranges[2] = h / std::sqrt(h * h + in * in);
+        ranges[3] = 1.0f;
+        count = 2;
       }
     }
-    for (int c = 0; c < 3; ++c)
+    const float* row = &this->SkyTable[9 * static_cast<std::size_t>(b) * Heights];
+    for (int r = 0; r < count; ++r)
     {
-      this->Sky[3 * k + c] = static_cast<float>(sum[c] / samples);
+      const float s0 = std::max(lo, ranges[2 * r]), s1 = std::min(hi, ranges[2 * r + 1]);
+      if (!(s1 > s0))
+      {
+        continue;
+      }
+      float t0[9], t1[9];
+      at(row, s0, t0);
+      at(row, s1, t1);
+      float v = 1.0f;
+      if (g)
+      {
+        const int k = std::min(SkyRows - 1, static_cast<int>(0.5f * (s0 + s1) * SkyRows));
+        const float* y = &this->SkyBasis[this->Coefficients * (b * SkyRows + k)];
+        v = 0.0f;
+        for (int i = 0; i < this->Coefficients; ++i)
+        {
+          v += g[i] * y[i];
+        }
+        v = std::min(1.0f, std::max(0.0f, v));
+      }
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        const float e = nl[0] * (t1[ch] - t0[ch]) + nl[1] * (t1[3 + ch] - t0[3 + ch]) +
+          nl[2] * (t1[6 + ch] - t0[6 + ch]);
+        sum[ch] += v * std::max(0.0f, e);
+      }
     }
+  }
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    gap[ch] = sum[ch] / pi;
   }
 }
 
@@ -275,7 +453,7 @@ bool PlaneLightMap::Scale(
   const float inv = 1.0f / this->Cell;
   const float fu = (x - this->U0) * inv, fv = (y - this->V0) * inv, hu = h * inv;
   const bool empty = this->S.empty();
-  float sum[3] = { 0, 0, 0 }, sky[3] = { 0, 0, 0 }, weights = 0.0f;
+  float sum[3] = { 0, 0, 0 }, weights = 0.0f;
   const int count = static_cast<int>(this->StepU.size());
   for (int k = 0; k < count; ++k)
   {
@@ -299,10 +477,6 @@ bool PlaneLightMap::Scale(
     const float su = this->StepU[k], sv = this->StepV[k];
     if (this->Bounded && !InExtent(this->Dual1, this->Dual2, x + h * su, y + h * sv))
     {
-      for (int ch = 0; ch < 3; ++ch)
-      {
-        sky[ch] += seen * this->Sky[3 * k + ch];
-      }
       continue;
     }
     float s[3] = { 1.0f, 1.0f, 1.0f };
@@ -322,10 +496,10 @@ bool PlaneLightMap::Scale(
   for (int ch = 0; ch < 3; ++ch)
   {
     scale[ch] = std::min(1.0f, std::max(0.0f, sum[ch] / weights));
-    if (gap)
-    {
-      gap[ch] = 2.0f * sky[ch] / static_cast<float>(count);
-    }
+  }
+  if (gap)
+  {
+    this->SkyPastEdges(x, y, h, n, g, gap);
   }
   return true;
 }

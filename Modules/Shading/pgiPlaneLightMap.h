@@ -79,11 +79,20 @@ public:
   /// s at plane point x (bilinear; 1 outside the grid).
   void Lookup(const float x[3], float s[3]) const;
 
-  /// The environment below the horizon along each look-up direction (its
-  /// mean over the direction's share of the half-space, 16 samples of the
-  /// map; order-4 SH would smear the bright sky across the horizon), for
-  /// the gap past a bounded plane's edges.
+  /**
+   * The environment below the plane's horizon, for the sky a receiver sees
+   * past a bounded plane's edges (order-4 SH would smear the bright sky
+   * across the horizon). Tabulated in the plane's frame over SkyBins
+   * azimuths and SkyHeights steps of s = sin(angle below the horizon)
+   * (uniform in s is uniform in solid angle: dw = ds dphi): per bin and
+   * height, the integral of L(w) w dw over the bin from the horizon down to
+   * s, as (w.U, w.V, w.m) times RGB (9 floats), from 8 x 4 samples of the
+   * map per cell. Kept while the map and the plane's frame stay.
+   */
   void SetSky(const EnvironmentMap& map);
+  static constexpr int SkyBins = 32, SkyHeights = 64;
+  /// Rows of directions per bin (uniform in s) the visibility is read at.
+  static constexpr int SkyRows = 8;
 
   /// Whether plane point x lies on the plane's extent (always if unbounded).
   bool Inside(const float x[3]) const;
@@ -93,13 +102,26 @@ public:
    * the sum of max(n.w, 0) s over the look-up directions over that of
    * max(n.w, 0). With g (Layout's order^2 floats), each term of the first
    * sum is also weighted by V(w). Directions that meet the plane off its
-   * extent add nothing to it; with `gap`, they add the sky's exit radiance
-   * (white receiver, (2/K) sum of max(n.w, 0) V(w) sky(w); SetSky) there. False
+   * extent add nothing to it. With `gap`, the sky's exit radiance past the
+   * extent (white receiver, 1/pi int L(w) V(w) max(n.w, 0) dw over the
+   * directions below the horizon that miss the extent; SkyPastEdges). False
    * (scale 1, gap 0) when the receiver is not above the plane or sees none
    * of it.
    */
   bool Scale(const float p[3], const float n[3], float scale[3], const float* g = nullptr,
     float gap[3] = nullptr) const;
+
+  /**
+   * The sky past a bounded plane's edges at a receiver whose foot is (x, y)
+   * in plane coordinates, at height h > 0, normal n, visibility g (or null):
+   * per azimuth bin, the heights below the horizon whose rays miss the
+   * extent (the bin's centre ray), intersected with where its n.w > 0, are
+   * read off the SetSky table (linear in s), weighted by V at the bin's row
+   * (SkyRows) nearest their middle, clamped to [0, 1]; the sum over pi.
+   * Exact for a map constant over each cell, up to the bins' width.
+   */
+  void SkyPastEdges(
+    float x, float y, float h, const float n[3], const float* g, float gap[3]) const;
 
   // What the GPU mapper uploads (its GLSL twin, pgiPlaneLightScale).
   const float* GetU() const { return this->U; }
@@ -119,8 +141,11 @@ public:
   const float* GetDirection(int k) const { return &this->Directions[3 * k]; }
   float GetStepU(int k) const { return this->StepU[k]; }
   float GetStepV(int k) const { return this->StepV[k]; }
-  /// The sky below the horizon along direction k (SetSky), RGB.
-  const float* GetSky(int k) const { return &this->Sky[3 * k]; }
+  /// SetSky's table: bin b's (SkyHeights + 1) x 9 floats from 9 b (SkyHeights + 1).
+  const float* GetSkyTable() const
+  {
+    return this->SkyTable.empty() ? nullptr : this->SkyTable.data();
+  }
 
 private:
   float Origin[3] = { 0, 0, 0 }, Normal[3] = { 0, 0, 1 }, U[3] = { 1, 0, 0 }, V[3] = { 0, 1, 0 };
@@ -133,7 +158,20 @@ private:
   std::vector<float> Directions, StepU, StepV;
   int Coefficients = 0;
   std::vector<float> Basis; // Coefficients per direction
-  std::vector<float> Sky;   // RGB per direction
+  // SetSky's table, what it was built from, and the basis (Coefficients)
+  // at each bin's SkyRows directions, in bin-major order.
+  std::vector<float> SkyTable, SkyBasis;
+  // Per bin: its centre's (cos, sin) in (U, V) and its steps in the
+  // extent's coordinates (dual 1, dual 2) per unit of distance.
+  std::vector<float> SkyAxes;
+  struct SkyKey
+  {
+    const void* Texels = nullptr;
+    double Rotation = 0.0, Checksum = 0.0;
+    int Width = 0, Height = 0, Coefficients = 0;
+    float Frame[9] = { 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+    bool operator==(const SkyKey& o) const;
+  } SkyBuiltFor;
   // A bounded plane: its half edges' dual vectors in (U, V), so that a
   // point's extent coordinates are its plane coordinates dotted with them.
   bool Bounded = false;

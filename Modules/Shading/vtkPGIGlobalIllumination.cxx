@@ -1195,7 +1195,13 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
     std::ostringstream line;
     line << "planes' bounce: the shadowed light of " << planes << " plane(s) on " << points
          << " grid points" << (how.Bright ? " (bright lights included)" : "") << ", averaged over "
-         << planeDirections << " directions per receiver ("
+         << planeDirections << " directions per receiver"
+         << (std::any_of(maps.begin(), maps.end(),
+               [](const proxygi::PlaneLightMap& m) { return m.GetBounded(); })
+                ? ", the sky past bounded planes' edges over " +
+                  std::to_string(proxygi::PlaneLightMap::SkyBins) + " azimuths"
+                : std::string())
+         << " ("
          << 1e-6 *
         static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(
           std::chrono::steady_clock::now() - start)

@@ -47,10 +47,16 @@ uniform int pgiPlaneBounceShadows;
 // CPU by BuildPlaneLightMaps): pgiPlaneMapDirections look-ups per receiver
 // (0: one plane point, pgiPlaneShadowScale). pgiPlaneMapGrid holds s (rgb)
 // of plane k in its rows from pgiPlaneMapSize[k].z; pgiPlaneMapTable, per
-// plane two rows of one texel per direction: (w, step u), (sky, step v).
+// plane two rows of one texel per direction: (w, step u), (0, step v).
+// pgiPlaneMapSky: PlaneLightMap::SetSky's table, plane k's bin b in row
+// k pgiPlaneSkyBins + b, height j's axis a (U, V, m) in column 3 j + a (rgb).
 uniform int pgiPlaneMapDirections;
 uniform sampler2D pgiPlaneMapGrid;
 uniform sampler2D pgiPlaneMapTable;
+uniform sampler2D pgiPlaneMapSky;
+uniform int pgiPlaneSkyBins;
+uniform int pgiPlaneSkyHeights;
+uniform int pgiPlaneSkyRows;
 uniform vec3 pgiPlaneMapU[PGI_MAX_PLANES];
 uniform vec3 pgiPlaneMapV[PGI_MAX_PLANES];
 uniform vec4 pgiPlaneMapFrame[PGI_MAX_PLANES]; // U0, V0, cell, bounded (1)
@@ -87,12 +93,120 @@ vec3 pgiPlaneMapBilinear(int k, float fu, float fv)
   return bottom + b * (top - bottom);
 }
 
+// Plane k's sky table of bin b, axis a, at s (linear between heights).
+vec3 pgiPlaneSkyAt(int k, int b, int a, float s)
+{
+  float f = clamp(s, 0.0, 1.0) * float(pgiPlaneSkyHeights);
+  int j = min(pgiPlaneSkyHeights - 1, int(f));
+  float t = f - float(j);
+  int row = k * pgiPlaneSkyBins + b;
+  vec3 lo = texelFetch(pgiPlaneMapSky, ivec2(3 * j + a, row), 0).rgb;
+  vec3 hi = texelFetch(pgiPlaneMapSky, ivec2(3 * (j + 1) + a, row), 0).rgb;
+  return lo + t * (hi - lo);
+}
+
+// PlaneLightMap::SkyPastEdges: the sky's exit radiance past bounded plane
+// k's edges at a receiver whose foot is (x, y), at height h, normal n.
+vec3 pgiPlaneSkyPastEdges(
+  int k, float x, float y, float h, vec3 n, bool weighted, float g[PGI_SH_N2])
+{
+  vec3 pu = pgiPlaneMapU[k], pv = pgiPlaneMapV[k], pm = pgiPlaneNormal[k];
+  vec3 nl = vec3(pgiDot3(n, pu), pgiDot3(n, pv), pgiDot3(n, pm));
+  vec4 dual = pgiPlaneMapDual[k];
+  float a1 = x * dual.x + y * dual.y, a2 = x * dual.z + y * dual.w;
+  float big = 3.402823e38;
+  float binWidth = 2.0 * pgiPi / float(pgiPlaneSkyBins);
+  vec3 sum = vec3(0.0);
+  for (int b = 0; b < pgiPlaneSkyBins; ++b)
+  {
+    float phi = binWidth * (float(b) + 0.5);
+    float c = cos(phi), sn = sin(phi);
+    float along = nl.x * c + nl.y * sn, m = nl.z;
+    bool atHorizon = along > 0.0, atNadir = m < 0.0;
+    if (!atHorizon && !atNadir)
+    {
+      continue;
+    }
+    float lo = 0.0, hi = 1.0;
+    if (atHorizon != atNadir)
+    {
+      float cross = abs(along) / sqrt(along * along + m * m);
+      if (atHorizon)
+      {
+        hi = cross;
+      }
+      else
+      {
+        lo = cross;
+      }
+    }
+    float tin = 0.0, tout = big;
+    for (int q = 0; q < 2; ++q)
+    {
+      float a = q == 0 ? a1 : a2;
+      float da = q == 0 ? c * dual.x + sn * dual.y : c * dual.z + sn * dual.w;
+      if (da == 0.0)
+      {
+        if (abs(a) > 1.0)
+        {
+          tin = big;
+        }
+        continue;
+      }
+      float t1 = (-1.0 - a) / da, t2 = (1.0 - a) / da;
+      tin = max(tin, min(t1, t2));
+      tout = min(tout, max(t1, t2));
+    }
+    vec4 ranges = vec4(0.0, 1.0, 0.0, 0.0);
+    int count = 1;
+    if (tin <= tout)
+    {
+      ranges.y = tout < big ? h / sqrt(h * h + tout * tout) : 0.0;
+      if (tin > 0.0)
+      {
+        ranges.zw = vec2(h / sqrt(h * h + tin * tin), 1.0);
+        count = 2;
+      }
+    }
+    for (int r = 0; r < count; ++r)
+    {
+      float s0 = max(lo, r == 0 ? ranges.x : ranges.z);
+      float s1 = min(hi, r == 0 ? ranges.y : ranges.w);
+      if (!(s1 > s0))
+      {
+        continue;
+      }
+      vec3 e = nl.x * (pgiPlaneSkyAt(k, b, 0, s1) - pgiPlaneSkyAt(k, b, 0, s0)) +
+        nl.y * (pgiPlaneSkyAt(k, b, 1, s1) - pgiPlaneSkyAt(k, b, 1, s0)) +
+        nl.z * (pgiPlaneSkyAt(k, b, 2, s1) - pgiPlaneSkyAt(k, b, 2, s0));
+      float v = 1.0;
+      if (weighted)
+      {
+        int row = min(pgiPlaneSkyRows - 1, int(0.5 * (s0 + s1) * float(pgiPlaneSkyRows)));
+        float s = (float(row) + 0.5) / float(pgiPlaneSkyRows);
+        vec3 w = sqrt(max(0.0, 1.0 - s * s)) * (c * pu + sn * pv) - s * pm;
+        float yq[PGI_SH_N2];
+        pgiSHBasis(w, yq);
+        v = 0.0;
+        for (int i = 0; i < PGI_SH_N2; ++i)
+        {
+          v += g[i] * yq[i];
+        }
+        v = min(1.0, max(0.0, v));
+      }
+      sum += v * max(e, vec3(0.0));
+    }
+  }
+  return sum / pgiPi;
+}
+
 // PlaneLightMap::Scale: the scale of plane k's light a receiver at p
 // (normal n) sees, each direction weighted by the visibility g when
-// `weighted`, and the sky past a bounded plane's edges (gap). False (scale
-// 1, gap 0) when the receiver is not above the plane or sees none of it.
-bool pgiPlaneLightScale(
-  vec3 p, vec3 n, int k, bool weighted, float g[PGI_SH_N2], out vec3 scale, out vec3 gap)
+// `weighted`, and (wantGap) the sky past a bounded plane's edges (gap).
+// False (scale 1, gap 0) when the receiver is not above the plane or sees
+// none of it.
+bool pgiPlaneLightScale(vec3 p, vec3 n, int k, bool weighted, float g[PGI_SH_N2], bool wantGap,
+  out vec3 scale, out vec3 gap)
 {
   scale = vec3(1.0);
   gap = vec3(0.0);
@@ -108,7 +222,7 @@ bool pgiPlaneLightScale(
   float inv = 1.0 / frame.z;
   float fu = (x - frame.x) * inv, fv = (y - frame.y) * inv, hu = h * inv;
   bool empty = pgiPlaneMapSize[k].x < 1.0;
-  vec3 sum = vec3(0.0), sky = vec3(0.0);
+  vec3 sum = vec3(0.0);
   float weights = 0.0;
   for (int q = 0; q < pgiPlaneMapDirections; ++q)
   {
@@ -138,7 +252,6 @@ bool pgiPlaneLightScale(
       float a = ex * dual.x + ey * dual.y, b = ex * dual.z + ey * dual.w;
       if (!(abs(a) <= 1.0 && abs(b) <= 1.0))
       {
-        sky += seen * sv.rgb;
         continue;
       }
     }
@@ -150,7 +263,10 @@ bool pgiPlaneLightScale(
     return false;
   }
   scale = clamp(sum / weights, 0.0, 1.0);
-  gap = 2.0 * sky / float(pgiPlaneMapDirections);
+  if (wantGap && frame.w > 0.5)
+  {
+    gap = pgiPlaneSkyPastEdges(k, x, y, h, n, weighted, g);
+  }
   return true;
 }
 
@@ -182,7 +298,7 @@ vec3 pgiResolveIndirectMapped(vec3 p, vec3 n, vec4 sum, float visibilityDC,
       radiance += y[i] * pgiResponse[i];
     }
     vec3 scale, skyPast;
-    pgiPlaneLightScale(p, n, k, weighted, g, scale, skyPast);
+    pgiPlaneLightScale(p, n, k, weighted, g, seenPast, scale, skyPast);
     vec3 term = pgiPlaneAlbedo[k] * scale * radiance * pgiCapWeight(0.5 * pgiPi, -pn, h);
     if (seenPast)
     {

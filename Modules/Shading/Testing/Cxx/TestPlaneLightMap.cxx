@@ -194,6 +194,77 @@ int TestPlaneLightMap(int, char*[])
     PGI_NEAR(gap[0], 0.0, 0.0);
   }
 
+  // The sky past a 6 x 4 ground's edges under a map with a bright band just
+  // below the horizon that varies with azimuth, against the integral summed
+  // over 1024 x 1024 directions (the same map): receivers over the ground,
+  // near an edge, past it, high up; facing sideways, down, up and tilted.
+  {
+    const float halfEdges[6] = { 3, 0, 0, 0, 2, 0 };
+    const Blockers b = Ground(halfEdges);
+    EnvironmentMap sky;
+    sky.SetFromFunction(
+      512, 256,
+      [](const double d[3], float rgb[3], void*)
+      {
+        const double below = std::max(0.0, -d[2]), around = std::atan2(d[1], d[0]);
+        const double band =
+          8.0 * std::exp(-std::pow(below / 0.1, 2)) * (1.0 + 0.6 * std::cos(3 * around));
+        rgb[0] = static_cast<float>(1.0 + band);
+        rgb[1] = static_cast<float>(0.5 + 0.5 * band);
+        rgb[2] = 1.0f;
+      },
+      nullptr);
+    PlaneLightMap map;
+    map.Layout(b, 0, {}, 64, 64, 4);
+    map.SetSky(sky);
+    struct Receiver
+    {
+      float P[3], N[3];
+    };
+    const float r = static_cast<float>(1 / std::sqrt(2.0));
+    const Receiver receivers[] = { { { 0, 0, 0.5f }, { 1, 0, 0 } },
+      { { 0.3f, -0.2f, 0.8f }, { 0, r, -r } }, { { 0, 0, 0.5f }, { 0, 0, -1 } },
+      { { 2.8f, 1.0f, 0.3f }, { 0.6f, 0, 0.8f } }, { { 3.5f, 0, 0.4f }, { -1, 0, 0 } },
+      { { 1.0f, 1.0f, 5.0f }, { 0, -r, -r } } };
+    for (const Receiver& q : receivers)
+    {
+      float scale[3], gap[3];
+      PGI_CHECK(map.Scale(q.P, q.N, scale, nullptr, gap));
+      // 1/pi int L max(n.w, 0) dw over the rays that miss the ground; below
+      // the horizon dw = ds dphi with s = -w.z.
+      constexpr int Steps = 1024;
+      double truth[3] = { 0, 0, 0 };
+      for (int i = 0; i < Steps; ++i)
+      {
+        const double s = (i + 0.5) / Steps, side = std::sqrt(1 - s * s), t = q.P[2] / s;
+        for (int j = 0; j < Steps; ++j)
+        {
+          const double phi = 2 * Pi * (j + 0.5) / Steps;
+          const double w[3] = { side * std::cos(phi), side * std::sin(phi), -s };
+          const double c = q.N[0] * w[0] + q.N[1] * w[1] + q.N[2] * w[2];
+          if (!(c > 0) || (std::abs(q.P[0] + t * w[0]) <= 3 && std::abs(q.P[1] + t * w[1]) <= 2))
+          {
+            continue;
+          }
+          float rgb[3];
+          sky.Lookup(w, rgb);
+          for (int ch = 0; ch < 3; ++ch)
+          {
+            truth[ch] += c * rgb[ch] * (2 * Pi / Steps) / Steps / Pi;
+          }
+        }
+      }
+      std::printf("sky past a 6 x 4 ground at (%.1f, %.1f, %.1f), normal (%.2f, %.2f, %.2f): "
+                  "%.4f %.4f %.4f (integral %.4f %.4f %.4f)\n",
+        q.P[0], q.P[1], q.P[2], q.N[0], q.N[1], q.N[2], gap[0], gap[1], gap[2], truth[0], truth[1],
+        truth[2]);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        PGI_NEAR(gap[ch], truth[ch], 0.01 * truth[ch] + 2e-4);
+      }
+    }
+  }
+
   // The filter: a ball (r = 1 at height 1.5, albedo 0.8) over a 4 x 4
   // ground (albedo 0.8) under a uniform sky of radiance 1, against Embree
   // with the same ground. The plane sampled at one point (the GPU's way),
