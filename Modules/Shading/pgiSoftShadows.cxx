@@ -1,6 +1,8 @@
 #include "pgiSoftShadows.h"
 
+#include "pgiBrightLights.h"
 #include "pgiSHBatch.h"
+#include "pgiSHLightTables.h"
 #include "pgiSHTables.h"
 #include "pgiSHZonal.h"
 #include "pgiSoftShadowsBatch.h"
@@ -474,6 +476,63 @@ bool SphereLog(const sh::CapTables& tables, const float p[3], const float n[3], 
   }
   return true;
 }
+
+// The solid angles of `leaves` seen from p, summed.
+double LeavesSolidAngle(const ProxyHierarchy& h, const std::vector<int>& leaves, const float p[3])
+{
+  double sum = 0.0;
+  for (int j : leaves)
+  {
+    const double d[3] = { h.X[j] - p[0], h.Y[j] - p[1], h.Z[j] - p[2] };
+    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    sum += sh::CapSolidAngle(len > h.R[j] ? std::asin(h.R[j] / len) : sh::Pi / 2);
+  }
+  return sum;
+}
+
+// The solid angle the union of `leaves` covers seen from p: the share of
+// 128 spherical-Fibonacci directions in the cap of `node` (which bounds
+// them) that meet a leaf, times the cap's solid angle.
+double UnionSolidAngle(
+  const ProxyHierarchy& h, const std::vector<int>& leaves, int node, const float p[3])
+{
+  constexpr int Samples = 128;
+  const double d[3] = { h.X[node] - p[0], h.Y[node] - p[1], h.Z[node] - p[2] };
+  const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(len > h.R[node]))
+  {
+    return LeavesSolidAngle(h, leaves, p);
+  }
+  const double axis[3] = { d[0] / len, d[1] / len, d[2] / len };
+  const double cosCap = std::sqrt(std::max(0.0, 1.0 - (h.R[node] / len) * (h.R[node] / len)));
+  double t[3], b[3];
+  FrameAbout(axis, t, b);
+  const double golden = sh::Pi * (3.0 - std::sqrt(5.0));
+  int hits = 0;
+  for (int k = 0; k < Samples; ++k)
+  {
+    const double z = 1.0 - (1.0 - cosCap) * (k + 0.5) / Samples;
+    const double side = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double c = std::cos(golden * k), s = std::sin(golden * k);
+    double w[3];
+    for (int q = 0; q < 3; ++q)
+    {
+      w[q] = z * axis[q] + side * (c * t[q] + s * b[q]);
+    }
+    for (int j : leaves)
+    {
+      const double e[3] = { h.X[j] - p[0], h.Y[j] - p[1], h.Z[j] - p[2] };
+      const double along = e[0] * w[0] + e[1] * w[1] + e[2] * w[2];
+      const double r = h.R[j];
+      if (along > 0.0 && e[0] * e[0] + e[1] * e[1] + e[2] * e[2] - along * along < r * r)
+      {
+        ++hits;
+        break;
+      }
+    }
+  }
+  return 2.0 * sh::Pi * (1.0 - cosCap) * hits / Samples;
+}
 } // namespace
 
 Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, const float p[3],
@@ -487,7 +546,7 @@ Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, cons
   const sh::CapTables& tables = sh::CapTables::Get(order);
   const int n2 = sh::NumCoefficients(order);
   const float sinMax = std::sin(maxAngle);
-  std::vector<int> stack(h.Roots.rbegin(), h.Roots.rend());
+  std::vector<int> stack(h.Roots.rbegin(), h.Roots.rend()), leaves;
   float zh[sh::MaxOrder], dir[3], fb[sh::MaxCoefficients], fd[sh::MaxCoefficients],
     v[sh::MaxCoefficients];
   while (!stack.empty())
@@ -516,6 +575,7 @@ Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, cons
       sh::RotateScaledZonal(order, zh, dir[0], dir[1], dir[2], fb);
       sh::Fill(fd, n2, 0.0f);
       std::vector<int> below(h.Children[i]);
+      leaves.clear();
       while (!below.empty())
       {
         const int j = below.back();
@@ -525,6 +585,7 @@ Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, cons
           below.insert(below.end(), h.Children[j].begin(), h.Children[j].end());
           continue;
         }
+        leaves.push_back(j);
         float cj[3] = { h.X[j], h.Y[j], h.Z[j] };
         if (SphereLog(tables, p, n, cj, h.R[j], rules, zh, dir))
         {
@@ -545,6 +606,17 @@ Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, cons
           den += fb[q] * fb[q];
         }
         ratio[l] = den > 0.0f ? num / den : 1.0f;
+      }
+      // Below the SH's resolution the exp of summed logs adds overlapping
+      // caps: the node blocks what its leaves' union blocks instead.
+      const double sum = LeavesSolidAngle(h, leaves, p);
+      const double covered = UnionSolidAngle(h, leaves, i, p);
+      if (sum > covered && sum > 0.0)
+      {
+        for (float& x : ratio)
+        {
+          x *= static_cast<float>(covered / sum);
+        }
       }
     }
     cut.Ratio.insert(cut.Ratio.end(), ratio.begin(), ratio.end());

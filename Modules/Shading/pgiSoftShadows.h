@@ -104,7 +104,12 @@ struct PROXYGISHADING_EXPORT ProxyHierarchy
  * the hierarchy whose nodes subtend less than maxAngle from the cluster's
  * bounding sphere (centre pR, radius rR), each with the per-band ratio vector
  * that best scales its bounding log-visibility to the summed log-visibility
- * of its leaves, both seen from the cluster's central receiver (p, n).
+ * of its leaves, both seen from the cluster's central receiver (p, n), then
+ * scaled down where the leaves overlap: by the solid angle of their union
+ * (the share of 128 directions in the node's cap that meet a leaf) over
+ * the sum of theirs. Below the SH's resolution the exp of summed logs adds
+ * overlapping caps instead of joining them (a bunny's 64 spheres seen from
+ * 3 m: 3.3% of the sphere, their union 0.36%).
  * Leaves in the cut keep ratio 1. `nodes`, if given, receives the hierarchy
  * index of each sphere of the cut.
  */

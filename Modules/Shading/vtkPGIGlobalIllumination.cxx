@@ -1047,7 +1047,8 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
   std::ostringstream line;
   line << "hierarchy: " << used << " receiver clusters, cuts of "
        << (used ? static_cast<double>(cutTotal) / used : 0.0) << " spheres on average (of "
-       << b.SceneBlockers.Spheres() << " leaves) at " << angle << " degrees (" << f.How
+       << b.SceneBlockers.Spheres() << " leaves) at " << angle
+       << " degrees, each node blocking its leaves' union (" << f.How
        << (reuse ? ", reused: the receivers did not change" : "") << ")"
        << (b.RunShadowed ? "; spherical lights cut alike, with reflection ratios" : "");
   this->Plan.push_back(line.str());
