@@ -39,7 +39,7 @@
  * | LocalLights | on | the lighting's spherical and point lights |
  * | LightCloud | on | point lights' indirect light from a light cloud (SetLocalLightTransfer) |
  * | BrightLights | on | the map's compact peaks (a sun) as distant lights; CPU filter |
- * | BrightLightFraction | 0.05 | a peak holding less of the map's power stays in the SH |
+ * | BrightLightFraction | 0.02 | a peak holding less of the map's power stays in the SH |
  * | BrightLightCount | 4 | at most this many peaks are taken out |
  * | BrightLightRays | 16 | directions per light and receiver over its disk (or occluder rays) |
  * | DefaultAlbedo | 0.8 0.8 0.8 | receivers' albedo without an AlbedoArrayName array |
@@ -275,7 +275,7 @@ protected:
   bool LocalLights = true;
   bool LightCloud = true;
   bool BrightLights = true;
-  double BrightLightFraction = 0.05;
+  double BrightLightFraction = 0.02;
   int BrightLightCount = 4;
   int BrightLightRays = 16;
   double DefaultAlbedo[3] = { 0.8, 0.8, 0.8 };
