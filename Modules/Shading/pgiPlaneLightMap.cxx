@@ -249,9 +249,9 @@ void PlaneLightMap::SetSky(const EnvironmentMap& map)
         {
           for (int q = 0; q < AlongPhi * AlongS; ++q)
           {
-            const double phi =
-              binWidth * (static_cast<double>(b) + (q % AlongPhi + 0.5) / AlongPhi);
-            const double s = step * (j + (q / AlongPhi + 0.5) / AlongS);
+            const int column = q % AlongPhi, row = q / AlongPhi;
+            const double phi = binWidth * (static_cast<double>(b) + (column + 0.5) / AlongPhi);
+            const double s = step * (j + (row + 0.5) / AlongS);
             const double c = std::cos(phi), sn = std::sin(phi), side = std::sqrt(1.0 - s * s);
             double w[3];
             world(c, sn, s, w);
