@@ -384,14 +384,24 @@ void PlaneLightMap::SkyPastEdges(
       float v = 1.0f;
       if (g)
       {
-        const int k = std::min(SkyRows - 1, static_cast<int>(0.5f * (s0 + s1) * SkyRows));
-        const float* y = &this->SkyBasis[this->Coefficients * (b * SkyRows + k)];
-        v = 0.0f;
-        for (int i = 0; i < this->Coefficients; ++i)
+        // V at the middle of the heights, linear between the two rows
+        // around it (the nearest row alone jumps as the receiver moves).
+        const float at = std::min(
+          static_cast<float>(SkyRows - 1), std::max(0.0f, 0.5f * (s0 + s1) * SkyRows - 0.5f));
+        const int k = std::min(SkyRows - 2, static_cast<int>(at));
+        const float t = at - static_cast<float>(k);
+        float rows[2];
+        for (int q = 0; q < 2; ++q)
         {
-          v += g[i] * y[i];
+          const float* y = &this->SkyBasis[this->Coefficients * (b * SkyRows + k + q)];
+          float dot = 0.0f;
+          for (int i = 0; i < this->Coefficients; ++i)
+          {
+            dot += g[i] * y[i];
+          }
+          rows[q] = std::min(1.0f, std::max(0.0f, dot));
         }
-        v = std::min(1.0f, std::max(0.0f, v));
+        v = rows[0] + t * (rows[1] - rows[0]);
       }
       for (int ch = 0; ch < 3; ++ch)
       {

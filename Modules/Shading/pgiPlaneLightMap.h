@@ -91,7 +91,7 @@ public:
    */
   void SetSky(const EnvironmentMap& map);
   static constexpr int SkyBins = 32, SkyHeights = 64;
-  /// Rows of directions per bin (uniform in s) the visibility is read at.
+  /// Rows of directions per bin (at s = (r + 0.5) / SkyRows) the visibility is read at.
   static constexpr int SkyRows = 8;
 
   /// Whether plane point x lies on the plane's extent (always if unbounded).
@@ -116,8 +116,9 @@ public:
    * in plane coordinates, at height h > 0, normal n, visibility g (or null):
    * per azimuth bin, the heights below the horizon whose rays miss the
    * extent (the bin's centre ray), intersected with where its n.w > 0, are
-   * read off the SetSky table (linear in s), weighted by V at the bin's row
-   * (SkyRows) nearest their middle, clamped to [0, 1]; the sum over pi.
+   * read off the SetSky table (linear in s), weighted by V at their middle
+   * (linear between the bin's two SkyRows directions around it, each
+   * clamped to [0, 1], so that it moves continuously); the sum over pi.
    * Exact for a map constant over each cell, up to the bins' width.
    */
   void SkyPastEdges(

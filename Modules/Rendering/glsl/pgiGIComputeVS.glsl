@@ -182,17 +182,25 @@ vec3 pgiPlaneSkyPastEdges(
       float v = 1.0;
       if (weighted)
       {
-        int row = min(pgiPlaneSkyRows - 1, int(0.5 * (s0 + s1) * float(pgiPlaneSkyRows)));
-        float s = (float(row) + 0.5) / float(pgiPlaneSkyRows);
-        vec3 w = sqrt(max(0.0, 1.0 - s * s)) * (c * pu + sn * pv) - s * pm;
-        float yq[PGI_SH_N2];
-        pgiSHBasis(w, yq);
-        v = 0.0;
-        for (int i = 0; i < PGI_SH_N2; ++i)
+        float at = min(float(pgiPlaneSkyRows - 1),
+          max(0.0, 0.5 * (s0 + s1) * float(pgiPlaneSkyRows) - 0.5));
+        int k0 = min(pgiPlaneSkyRows - 2, int(at));
+        float t = at - float(k0);
+        float rows[2];
+        for (int q = 0; q < 2; ++q)
         {
-          v += g[i] * yq[i];
+          float s = (float(k0 + q) + 0.5) / float(pgiPlaneSkyRows);
+          vec3 w = sqrt(max(0.0, 1.0 - s * s)) * (c * pu + sn * pv) - s * pm;
+          float yq[PGI_SH_N2];
+          pgiSHBasis(w, yq);
+          float dot = 0.0;
+          for (int i = 0; i < PGI_SH_N2; ++i)
+          {
+            dot += g[i] * yq[i];
+          }
+          rows[q] = min(1.0, max(0.0, dot));
         }
-        v = min(1.0, max(0.0, v));
+        v = rows[0] + t * (rows[1] - rows[0]);
       }
       sum += v * max(e, vec3(0.0));
     }

@@ -8,6 +8,8 @@
 // plane averaged over the map, and the map with the ground's extent.
 #include "pgiEnvironmentMap.h"
 #include "pgiPlaneLightMap.h"
+#include "pgiSHBasis.h"
+#include "pgiSHZonal.h"
 #include "pgiSoftShadows.h"
 #include "pgiTesting.h"
 #include "vtkPGIGISettings.h"
@@ -263,6 +265,47 @@ int TestPlaneLightMap(int, char*[])
         PGI_NEAR(gap[ch], truth[ch], 0.01 * truth[ch] + 2e-4);
       }
     }
+    // Weighted by a visibility (a cap of 60 degrees over the horizon),
+    // the sky moves continuously with the receiver: rising 1 mm at a time
+    // from 0.2 to 0.8 m, no step exceeds 1% of the sky's range (the nearest
+    // row of V alone jumped by 4% of it; 0.1 mm steps are 10 times smaller).
+    std::vector<float> g(16, 0.0f);
+    {
+      double zh[4];
+      sh::CapZonal(4, 60.0 * Pi / 180.0, zh);
+      float y[16];
+      sh::EvaluateBasis(4, 0.0f, 1.0f, 0.0f, y);
+      for (int l = 0; l < 4; ++l)
+      {
+        for (int m = -l; m <= l; ++m)
+        {
+          const int i = l * l + l + m;
+          // V = 1 - cap: the cap's SH rotated to +y (scaled zonal times y_lm).
+          g[i] = static_cast<float>(
+            (l == 0 ? std::sqrt(4 * Pi) : 0.0) - zh[l] * std::sqrt(4 * Pi / (2 * l + 1)) * y[i]);
+        }
+      }
+    }
+    const float side[3] = { 0, 1, 0 };
+    double largest = 0.0, lowest = 1e30, highest = 0.0, previous = -1.0;
+    for (int k = 0; k <= 600; ++k)
+    {
+      const float p[3] = { 0.3f, -0.2f, 0.2f + 0.001f * static_cast<float>(k) };
+      float scale[3], gap[3];
+      map.Scale(p, side, scale, g.data(), gap);
+      if (previous >= 0.0)
+      {
+        largest = std::max(largest, std::abs(gap[0] - previous));
+      }
+      previous = gap[0];
+      lowest = std::min(lowest, previous);
+      highest = std::max(highest, previous);
+    }
+    std::printf("sky past the edges behind a 60-degree cap, rising 1 mm at a time: %.4f to "
+                "%.4f, largest step %.2e\n",
+      lowest, highest, largest);
+    PGI_CHECK(highest > lowest);
+    PGI_BELOW(largest, 0.01 * (highest - lowest));
   }
 
   // The filter: a ball (r = 1 at height 1.5, albedo 0.8) over a 4 x 4
