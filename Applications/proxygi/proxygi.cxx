@@ -11,6 +11,7 @@
 #include <vtkSMPTools.h>
 #include <vtkVersionMacros.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -84,6 +85,27 @@ std::string Positional(const Args& args, const std::vector<std::string>& flags)
     return args[i];
   }
   return std::string();
+}
+
+bool KnownOptions(const Args& args, const char* command, const std::vector<std::string>& valued,
+  const std::vector<std::string>& flags)
+{
+  for (std::size_t i = 0; i < args.size(); ++i)
+  {
+    const std::string& a = args[i];
+    if (a.size() < 2 || a[0] != '-' || std::find(flags.begin(), flags.end(), a) != flags.end())
+    {
+      continue;
+    }
+    if (std::find(valued.begin(), valued.end(), a) == valued.end())
+    {
+      vtkLogF(ERROR, "proxygi %s: unknown option '%s' (proxygi %s --help lists them)", command,
+        a.c_str(), command);
+      return false;
+    }
+    ++i; // its value
+  }
+  return true;
 }
 
 } // namespace cli

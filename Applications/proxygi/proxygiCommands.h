@@ -45,6 +45,11 @@ bool Flag(const Args& args, const std::string& name);
 /// The first argument that is neither an option, an option's value, nor one
 /// of the value-less `flags`.
 std::string Positional(const Args& args, const std::vector<std::string>& flags);
+/// False, with an error naming it, if an argument starting with '-' is
+/// neither one of `valued` (then followed by its value) nor of `flags`:
+/// a misspelt or unsupported option is refused, not dropped.
+bool KnownOptions(const Args& args, const char* command, const std::vector<std::string>& valued,
+  const std::vector<std::string>& flags);
 } // namespace cli
 } // namespace proxygi
 

@@ -80,6 +80,10 @@ an option a mode has no use for as "note: ... does not apply".
   --indirect M        one-bounce light: shadowed (spherical lights, Guerrero
                       2008; default in vertex and gpu), unshadowed (Sloan 2007;
                       default and only one in image-space), off
+  --blocking B        the shadowed bounce's spherical lights are blocked per
+                      sphere (default) or per object (the lights of one
+                      object never block each other; vtkPGIGISettings::
+                      SphericalLightBlocking)
   --indirect-order N  the shadowed bounce's SH order (vertex mode; default 4,
                       0: --order); below --order it is cheaper: the bounce is
                       smooth, its second pass costs ~N^4 per light and vertex
@@ -155,7 +159,24 @@ int RunRender(const Args& args)
   }
   if (Flag(args, "--analytic"))
   {
+    if (!KnownOptions(args, "render",
+          { "--size", "--order", "--degree", "--radius", "--height", "--albedo", "--extent", "-o",
+            "--method" },
+          { "--analytic", "--help" }))
+    {
+      return 2;
+    }
     return RunRenderAnalytic(args);
+  }
+  if (!KnownOptions(args, "render",
+        { "-o", "--reference-png", "--mode", "--budget-model", "--check", "--error", "--time",
+          "--order", "--spheres", "--reference-spp", "--method", "--indirect", "--hierarchy",
+          "--scale", "--self-visibility", "--bright-lights", "--background", "--bright-shadows",
+          "--bright-rays", "--plane-directions", "--indirect-order", "--proxy-fit", "--blocking",
+          "--pixel-reference-spp", "--exposure", "--cache", "--vtp", "--size" },
+        { "--no-error", "--pixel-error", "--help" }))
+  {
+    return 2;
   }
   return RunRenderScene(args, Positional(args, { "--no-error", "--analytic", "--pixel-error" }));
 }

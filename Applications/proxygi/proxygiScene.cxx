@@ -86,7 +86,7 @@ struct RenderOptions
   int PlaneDirections = 64; // the planes' bounce: look-ups per receiver (0: one point)
   int IndirectOrder = 0;    // the shadowed bounce's SH order (0: --order)
   int ExpMethod = vtkPGIGISettings::EXP_HYB;
-  int Blocking = vtkPGIGISettings::BLOCKING_PER_SPHERE; // the budget's knob (no option)
+  int Blocking = vtkPGIGISettings::BLOCKING_PER_SPHERE; // --blocking sphere|object
   std::string MethodName = "HYB", IndirectName = "shadowed";
   double HierarchyAngle = 25.0, Exposure = 0.0;
   std::string Output, Cache, Vtp, ReferencePNG;
@@ -206,6 +206,9 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   o.IndirectOrder =
     static_cast<int>(NumberOption(args, "--indirect-order", o.Mode == "vertex" ? 4 : 0, ok));
   o.ProxyFit = Option(args, "--proxy-fit", "occlusion");
+  const std::string blocking = Option(args, "--blocking", "sphere");
+  o.Blocking = blocking == "object" ? vtkPGIGISettings::BLOCKING_PER_OBJECT
+                                    : vtkPGIGISettings::BLOCKING_PER_SPHERE;
   o.PixelSpp = static_cast<int>(NumberOption(args, "--pixel-reference-spp", 256, ok));
   o.Exposure = NumberOption(args, "--exposure", 0.0, ok);
   o.Cache = Option(args, "--cache", "proxygi-cache");
@@ -224,14 +227,15 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
     (o.BrightShadows != "rays" && o.BrightShadows != "proxies") ||
     (o.Background != "map" && o.Background != "none") || o.BrightRays < 1 || o.BrightRays > 256 ||
     o.PlaneDirections < 0 || o.PlaneDirections > 1024 || o.IndirectOrder < 0 ||
-    o.IndirectOrder > 8 || (o.ProxyFit != "bounding" && o.ProxyFit != "occlusion"))
+    o.IndirectOrder > 8 || (o.ProxyFit != "bounding" && o.ProxyFit != "occlusion") ||
+    (blocking != "sphere" && blocking != "object"))
   {
     vtkLogF(ERROR,
       "proxygi render: --mode gpu|vertex|image-space, --scale 1|2|4|8, "
       "--pixel-reference-spp >= 1, 0 <= --self-visibility <= 65536, --bright-lights on|off, "
       "--bright-shadows rays|proxies, 1 <= --bright-rays <= 256, --background map|none, "
       "0 <= --plane-directions <= 1024, 0 <= --indirect-order <= 8, "
-      "--proxy-fit bounding|occlusion");
+      "--proxy-fit bounding|occlusion, --blocking sphere|object");
     return false;
   }
   if (o.IndirectName != "shadowed" && o.IndirectName != "unshadowed" && o.IndirectName != "off")
@@ -279,6 +283,16 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
   {
     std::printf("note: --indirect-order does not apply to --indirect %s (it is the shadowed "
                 "bounce's order)\n",
+      o.IndirectName.c_str());
+  }
+  if (o.ImageSpace())
+  {
+    notFor("--blocking", "the image-space pass has the unshadowed bounce only");
+  }
+  else if (o.IndirectName != "shadowed" && Given(args, "--blocking"))
+  {
+    std::printf("note: --blocking does not apply to --indirect %s (it is how the shadowed "
+                "bounce's lights block)\n",
       o.IndirectName.c_str());
   }
   if (o.ImageSpace())
@@ -341,11 +355,12 @@ bool ChooseForBudget(
              self = Given(args, "--self-visibility"), indirect = Given(args, "--indirect"),
              indirectOrder = Given(args, "--indirect-order"),
              hierarchy = Given(args, "--hierarchy"), method = Given(args, "--method"),
-             brightRays = Given(args, "--bright-rays");
+             brightRays = Given(args, "--bright-rays"), blocking = Given(args, "--blocking");
   budget::Knobs asGiven = { o.Order, o.IndirectOrder, o.Spheres, o.SelfVisibility,
     o.IndirectName == "shadowed", o.HierarchyAngle };
   asGiven.ExpMethod = o.ExpMethod;
   asGiven.BrightLightRays = o.BrightRays;
+  asGiven.Blocking = o.Blocking;
   o.Allowed = [=](const budget::Knobs& k)
   {
     return (!order || k.Order == asGiven.Order) && (!spheres || k.Spheres == asGiven.Spheres) &&
@@ -354,7 +369,8 @@ bool ChooseForBudget(
       (!indirectOrder || k.IndirectOrder == asGiven.IndirectOrder) &&
       (!hierarchy || k.HierarchyAngle == asGiven.HierarchyAngle) &&
       (!method || k.ExpMethod == asGiven.ExpMethod) &&
-      (!brightRays || k.BrightLightRays == asGiven.BrightLightRays);
+      (!brightRays || k.BrightLightRays == asGiven.BrightLightRays) &&
+      (!blocking || k.Blocking == asGiven.Blocking);
   };
   // The GPU mapper's candidates where the model has them, with times of
   // this kind of renderer (auto); --mode gpu takes them in any case, said.
@@ -994,10 +1010,20 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
   // What ran (the effective settings of this mode's backend).
   const bool shadowedBounce = effective->GetIndirect() &&
     effective->GetIndirectMode() == vtkPGIGISettings::INDIRECT_MODE_SHADOWED;
-  const std::string bounceOrder =
-    shadowedBounce && effective->GetEffectiveIndirectOrder() != effective->GetOrder()
-    ? " (SH order " + std::to_string(effective->GetEffectiveIndirectOrder()) + ")"
-    : std::string();
+  std::string bounceOrder;
+  if (shadowedBounce && effective->GetEffectiveIndirectOrder() != effective->GetOrder())
+  {
+    bounceOrder = "SH order " + std::to_string(effective->GetEffectiveIndirectOrder());
+  }
+  if (shadowedBounce &&
+    effective->GetSphericalLightBlocking() == vtkPGIGISettings::BLOCKING_PER_OBJECT)
+  {
+    bounceOrder += std::string(bounceOrder.empty() ? "" : ", ") + "per-object blocking";
+  }
+  if (!bounceOrder.empty())
+  {
+    bounceOrder = " (" + bounceOrder + ")";
+  }
   std::printf("settings: mode %s, SH order %d, exp %s, indirect %s%s, %lld proxy spheres, %zu "
               "planes, %lld receivers\n",
     o.Mode.c_str(), effective->GetOrder(),
