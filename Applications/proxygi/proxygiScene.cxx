@@ -275,26 +275,21 @@ bool ParseRenderOptions(const Args& args, RenderOptions& o)
     notFor("--bright-shadows", sh);
     notFor("--bright-rays", sh);
   }
-  if (o.ImageSpace())
+  // Knobs of the shadowed bounce alone.
+  const auto shadowedOnly = [&](const char* option, const char* what)
   {
-    notFor("--indirect-order", "the image-space pass has the unshadowed bounce only");
-  }
-  else if (o.IndirectName != "shadowed" && Given(args, "--indirect-order"))
-  {
-    std::printf("note: --indirect-order does not apply to --indirect %s (it is the shadowed "
-                "bounce's order)\n",
-      o.IndirectName.c_str());
-  }
-  if (o.ImageSpace())
-  {
-    notFor("--blocking", "the image-space pass has the unshadowed bounce only");
-  }
-  else if (o.IndirectName != "shadowed" && Given(args, "--blocking"))
-  {
-    std::printf("note: --blocking does not apply to --indirect %s (it is how the shadowed "
-                "bounce's lights block)\n",
-      o.IndirectName.c_str());
-  }
+    if (o.ImageSpace())
+    {
+      notFor(option, "the image-space pass has the unshadowed bounce only");
+    }
+    else if (o.IndirectName != "shadowed" && Given(args, option))
+    {
+      std::printf("note: %s does not apply to --indirect %s (it is %s)\n", option,
+        o.IndirectName.c_str(), what);
+    }
+  };
+  shadowedOnly("--indirect-order", "the shadowed bounce's order");
+  shadowedOnly("--blocking", "how the shadowed bounce's lights block");
   if (o.ImageSpace())
   {
     notFor("--plane-directions", "the image-space pass samples the planes' light at one point");
