@@ -244,14 +244,14 @@ void PlaneLightMap::SetSky(const EnvironmentMap& map)
       for (vtkIdType b = first; b < last; ++b)
       {
         double sum[9] = { 0, 0, 0, 0, 0, 0, 0, 0, 0 };
-        float* row = &this->SkyTable[9 * static_cast<std::size_t>(b) * Heights];
+        float* cumulative = &this->SkyTable[9 * static_cast<std::size_t>(b) * Heights];
         for (int j = 0; j < SkyHeights; ++j)
         {
           for (int q = 0; q < AlongPhi * AlongS; ++q)
           {
-            const int column = q % AlongPhi, row = q / AlongPhi;
-            const double phi = binWidth * (static_cast<double>(b) + (column + 0.5) / AlongPhi);
-            const double s = step * (j + (row + 0.5) / AlongS);
+            const int inPhi = q % AlongPhi, inS = q / AlongPhi;
+            const double phi = binWidth * (static_cast<double>(b) + (inPhi + 0.5) / AlongPhi);
+            const double s = step * (j + (inS + 0.5) / AlongS);
             const double c = std::cos(phi), sn = std::sin(phi), side = std::sqrt(1.0 - s * s);
             double w[3];
             world(c, sn, s, w);
@@ -268,7 +268,7 @@ void PlaneLightMap::SetSky(const EnvironmentMap& map)
           }
           for (int k = 0; k < 9; ++k)
           {
-            row[9 * (j + 1) + k] = static_cast<float>(sum[k]);
+            cumulative[9 * (j + 1) + k] = static_cast<float>(sum[k]);
           }
         }
       }
@@ -386,10 +386,10 @@ void PlaneLightMap::SkyPastEdges(
       {
         // V at the middle of the heights, linear between the two rows
         // around it (the nearest row alone jumps as the receiver moves).
-        const float at = std::min(
+        const float middle = std::min(
           static_cast<float>(SkyRows - 1), std::max(0.0f, 0.5f * (s0 + s1) * SkyRows - 0.5f));
-        const int k = std::min(SkyRows - 2, static_cast<int>(at));
-        const float t = at - static_cast<float>(k);
+        const int k = std::min(SkyRows - 2, static_cast<int>(middle));
+        const float t = middle - static_cast<float>(k);
         float rows[2];
         for (int q = 0; q < 2; ++q)
         {

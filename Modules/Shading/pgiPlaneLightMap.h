@@ -93,6 +93,7 @@ public:
   static constexpr int SkyBins = 32, SkyHeights = 64;
   /// Rows of directions per bin (at s = (r + 0.5) / SkyRows) the visibility is read at.
   static constexpr int SkyRows = 8;
+  static_assert(SkyRows >= 2, "the visibility is read between two rows");
 
   /// Whether plane point x lies on the plane's extent (always if unbounded).
   bool Inside(const float x[3]) const;
