@@ -535,6 +535,77 @@ double UnionSolidAngle(
 }
 } // namespace
 
+float ScaleCutToUnion(Blockers& cut, const Blockers& leaves, const SoftShadows& kernel,
+  const float p[3], const float n[3])
+{
+  const int order = kernel.GetOrder(), n2 = order * order;
+  if (cut.Spheres() == 0 || kernel.GetAccumulationOrder() != order)
+  {
+    return 1.0f;
+  }
+  // The union's cosine-weighted share of the hemisphere.
+  constexpr int Directions = 2048;
+  const double axis[3] = { n[0], n[1], n[2] };
+  double t[3], b[3];
+  FrameAbout(axis, t, b);
+  const double golden = sh::Pi * (3.0 - std::sqrt(5.0));
+  int hits = 0;
+  for (int k = 0; k < Directions; ++k)
+  {
+    const double u = (k + 0.5) / Directions, side = std::sqrt(u), up = std::sqrt(1.0 - u);
+    const double c = std::cos(golden * k), s = std::sin(golden * k);
+    double w[3];
+    for (int q = 0; q < 3; ++q)
+    {
+      w[q] = up * axis[q] + side * (c * t[q] + s * b[q]);
+    }
+    for (std::size_t j = 0; j < leaves.Spheres(); ++j)
+    {
+      const double e[3] = { leaves.X[j] - p[0], leaves.Y[j] - p[1], leaves.Z[j] - p[2] };
+      const double along = e[0] * w[0] + e[1] * w[1] + e[2] * w[2];
+      const double r = leaves.R[j];
+      if (along > 0.0 && e[0] * e[0] + e[1] * e[1] + e[2] * e[2] - along * along < r * r)
+      {
+        ++hits;
+        break;
+      }
+    }
+  }
+  const double covered = static_cast<double>(hits) / Directions;
+  if (cut.Ratio.size() != static_cast<std::size_t>(order) * cut.Spheres())
+  {
+    cut.Ratio.assign(static_cast<std::size_t>(order) * cut.Spheres(), 1.0f);
+  }
+  const std::vector<float> base = cut.Ratio;
+  float h[sh::MaxCoefficients], g[sh::MaxCoefficients];
+  sh::DiffuseTransfer(order, n[0], n[1], n[2], h);
+  const double open = static_cast<double>(h[0]) * sh::SqrtFourPi;
+  SelfVisibility ground;
+  ground.OwnsNoSpheres = true;
+  // The blocked share falls with the logs' scale: a few multiplicative steps.
+  double scale = 1.0;
+  for (int step = 0; step < 6 && open > 0.0; ++step)
+  {
+    for (std::size_t q = 0; q < base.size(); ++q)
+    {
+      cut.Ratio[q] = base[q] * static_cast<float>(scale);
+    }
+    sh::Status status;
+    kernel.Visibility(p, n, cut, g, status, nullptr, ground);
+    const double blocked = 1.0 - sh::Dot(n2, h, g) / open;
+    if (status != sh::Status::Ok || !(blocked > covered * 1.01) || !(blocked > 0.0))
+    {
+      break;
+    }
+    scale = std::max(0.05, scale * covered / blocked);
+  }
+  for (std::size_t q = 0; q < base.size(); ++q)
+  {
+    cut.Ratio[q] = base[q] * static_cast<float>(scale);
+  }
+  return static_cast<float>(scale);
+}
+
 Blockers CutHierarchy(const ProxyHierarchy& h, const float pR[3], float rR, const float p[3],
   const float n[3], float maxAngle, int order, bool rules, std::vector<int>* nodes)
 {

@@ -1006,6 +1006,39 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
   }
   const double angle = this->Effective->GetHierarchyAngle();
   const float maxAngle = static_cast<float>(vtkMath::RadiansFromDegrees(angle));
+  // Clusters whose receivers own no spheres (a ground): their cut is scaled
+  // to block what the leaves' union blocks (ScaleCutToUnion).
+  std::vector<char> ownsNone(clusters, 0);
+  vtkDataArray* receiverIds = receivers->GetPointData()->GetArray("ObjectId");
+  const proxygi::Blockers& leaves = b.SceneBlockers;
+  if (receiverIds && leaves.Object.size() == leaves.Spheres())
+  {
+    std::vector<int> objects(leaves.Object.begin(), leaves.Object.end());
+    std::sort(objects.begin(), objects.end());
+    std::vector<double> first(clusters, std::numeric_limits<double>::quiet_NaN());
+    std::vector<char> mixed(clusters, 0);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      const int k = f.Of[i];
+      const double id = receiverIds->GetTuple1(i);
+      if (k < 0)
+      {
+        continue;
+      }
+      if (std::isnan(first[k]))
+      {
+        first[k] = id;
+      }
+      mixed[k] = mixed[k] || id != first[k];
+    }
+    for (int k = 0; k < clusters; ++k)
+    {
+      ownsNone[k] = !mixed[k] && first[k] >= 0.0 && first[k] < (1 << 24) &&
+        !std::binary_search(objects.begin(), objects.end(), static_cast<int>(first[k]));
+    }
+  }
+  const proxygi::SoftShadows kernel(b.Kernel);
+  std::vector<float> scales(clusters, 0.0f);
   // The clusters' cuts are independent: one thread each.
   const bool rules = this->Effective->GetSelfShadowRules();
   vtkSMPTools::For(0, clusters,
@@ -1024,6 +1057,10 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
         const float nf[3] = { float(f.Facing[k][0]), float(f.Facing[k][1]), float(f.Facing[k][2]) };
         cl.Blockers[k] = proxygi::CutHierarchy(b.Hierarchy, pR, float(f.Radius[k]), pf, nf,
           maxAngle, b.Order, rules, b.RunShadowed ? &nodes : nullptr);
+        if (ownsNone[k])
+        {
+          scales[k] = proxygi::ScaleCutToUnion(cl.Blockers[k], leaves, kernel, pf, nf);
+        }
         if (b.RunShadowed)
         {
           CutSphericalLights(b.Lights, b.LeafLights, b.LeafOfNode, b.Hierarchy, nodes,
@@ -1035,13 +1072,19 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
       }
     });
   std::size_t cutTotal = 0;
-  int used = 0;
+  int used = 0, scaled = 0;
+  double scaleSum = 0.0;
   for (int k = 0; k < clusters; ++k)
   {
     if (f.Radius[k] >= 0.0)
     {
       cutTotal += cl.Blockers[k].Spheres();
       ++used;
+    }
+    if (scales[k] > 0.0f && scales[k] < 1.0f)
+    {
+      ++scaled;
+      scaleSum += scales[k];
     }
   }
   std::ostringstream line;
@@ -1051,6 +1094,11 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
        << " degrees, each node blocking its leaves' union (" << f.How
        << (reuse ? ", reused: the receivers did not change" : "") << ")"
        << (b.RunShadowed ? "; spherical lights cut alike, with reflection ratios" : "");
+  if (scaled > 0)
+  {
+    line << "; " << scaled << " clusters of receivers without proxies scaled to their blockers' "
+         << "union (logs x " << scaleSum / scaled << " on average)";
+  }
   this->Plan.push_back(line.str());
   return true;
 }

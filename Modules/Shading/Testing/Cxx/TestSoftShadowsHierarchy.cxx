@@ -171,6 +171,50 @@ int TestSoftShadowsHierarchy(int, char*[])
       worst, worstLeaves);
     PGI_BELOW(worst, 0.05);
   }
+  // A receiver that owns none of the spheres under a row of heavily
+  // overlapping ones (an arch's tube): every sphere is below the SH's
+  // resolution, the exp of summed logs blocks far more than their union,
+  // and ScaleCutToUnion brings the cut's blocked share to the union's.
+  {
+    Blockers row;
+    for (int k = 0; k < 12; ++k)
+    {
+      row.AddSphere(-1.0f + 2.0f * static_cast<float>(k) / 11.0f, 0.0f, 0.8f, 0.25f);
+    }
+    double worstBefore = 0.0, worstAfter = 0.0;
+    float smallest = 1.0f;
+    for (const float x : { 0.0f, 0.4f, -0.9f })
+    {
+      const float p[3] = { x, 0.2f, 0.0f };
+      Blockers cut = row;
+      const double exact = TrueRadiance(shadows, row, p);
+      const double before = std::fabs(Radiance(shadows, cut, p, up) - exact);
+      smallest = std::min(smallest, ScaleCutToUnion(cut, row, shadows, p, up));
+      worstBefore = std::max(worstBefore, before);
+      worstAfter = std::max(worstAfter, std::fabs(Radiance(shadows, cut, p, up) - exact));
+    }
+    // One sphere (18 degrees): its exp of log blocks a little more than
+    // its cap, and is brought to it; an empty cut is left alone.
+    Blockers one = row;
+    one.X.resize(1), one.Y.resize(1), one.Z.resize(1), one.R.resize(1);
+    one.X[0] = 0.0f;
+    const float p[3] = { 0.0f, 0.2f, 0.0f };
+    const double oneExact = TrueRadiance(shadows, one, p);
+    const double oneBefore = std::fabs(Radiance(shadows, one, p, up) - oneExact);
+    const float lone = ScaleCutToUnion(one, one, shadows, p, up);
+    const double oneAfter = std::fabs(Radiance(shadows, one, p, up) - oneExact);
+    const double unshadowed = Radiance(shadows, Blockers(), p, up);
+    std::printf("under a row of 12 overlapping spheres: largest radiance error against their "
+                "union %.4f, %.4f with the cut scaled (logs x %.3f at least); one sphere: "
+                "%.4f, %.4f (x %.3f)\n",
+      worstBefore, worstAfter, smallest, oneBefore, oneAfter, lone);
+    PGI_BELOW(worstAfter, 0.02 * unshadowed);
+    PGI_BELOW(worstAfter, 0.3 * worstBefore);
+    PGI_BELOW(smallest, 0.9f);
+    PGI_BELOW(oneAfter, 0.01 * unshadowed);
+    Blockers none;
+    PGI_NEAR(ScaleCutToUnion(none, row, shadows, p, up), 1.0, 0.0);
+  }
   // Through the filter: proxies with Level and Parent arrays, a receiver
   // plane; the cut at 25 degrees against all leaves.
   {
@@ -260,6 +304,48 @@ int TestSoftShadowsHierarchy(int, char*[])
       100 * std::sqrt(isq / iref));
     PGI_CHECK(iref > 0.0);
     PGI_BELOW(std::sqrt(isq / iref), 0.05);
+    // With ObjectId arrays the plane's receivers own none of the spheres:
+    // their clusters' cuts are scaled to the leaves' union, and the plan
+    // says so; the plane comes out a little brighter under the clumps
+    // (they are far: the nodes' own union already holds there).
+    vtkNew<vtkPolyData> ground, owned;
+    ground->DeepCopy(plane->GetOutput());
+    owned->DeepCopy(proxies);
+    for (vtkPolyData* data : { ground.Get(), owned.Get() })
+    {
+      vtkNew<vtkIntArray> ids;
+      ids->SetName("ObjectId");
+      ids->SetNumberOfTuples(data->GetNumberOfPoints());
+      ids->FillValue(data == ground.Get() ? 1 : 0);
+      data->GetPointData()->AddArray(ids);
+    }
+    vtkNew<vtkPGIGlobalIllumination> scaled;
+    scaled->SetInputData(ground);
+    scaled->SetProxiesData(owned);
+    scaled->AddBlockerPlane(wallOrigin, wallNormal, wallAlbedo);
+    scaled->GetSettings()->SetHierarchyAngle(25);
+    scaled->GetSettings()->SetReceiversPerCluster(64);
+    scaled->Update();
+    bool said = false;
+    for (const std::string& line : scaled->GetPlan())
+    {
+      said = said ||
+        line.find("clusters of receivers without proxies scaled to their blockers' union") !=
+          std::string::npos;
+    }
+    PGI_CHECK(said);
+    vtkDataArray* c = scaled->GetOutput()->GetPointData()->GetArray("DirectShadowed");
+    double darker = 0.0, brighter = 0.0;
+    for (vtkIdType i = 0; i < c->GetNumberOfTuples(); ++i)
+    {
+      darker = std::max(darker, b->GetComponent(i, 0) - c->GetComponent(i, 0));
+      brighter = std::max(brighter, c->GetComponent(i, 0) - b->GetComponent(i, 0));
+    }
+    std::printf("plane owning no spheres, cut scaled to the union: up to %.4f brighter, %.2e "
+                "darker than the plain cut\n",
+      brighter, darker);
+    PGI_CHECK(brighter > 1e-4);
+    PGI_BELOW(darker, 0.002);
   }
 
   // Broken links are refused.
