@@ -477,6 +477,16 @@ bool SphereLog(const sh::CapTables& tables, const float p[3], const float n[3], 
   return true;
 }
 
+// Whether the ray from p along the unit w meets the sphere (x, y, z, r)
+// ahead of p.
+bool RayMeetsSphere(const float p[3], const double w[3], float x, float y, float z, float r)
+{
+  const double e[3] = { x - p[0], y - p[1], z - p[2] };
+  const double along = e[0] * w[0] + e[1] * w[1] + e[2] * w[2];
+  return along > 0.0 &&
+    e[0] * e[0] + e[1] * e[1] + e[2] * e[2] - along * along < static_cast<double>(r) * r;
+}
+
 // The solid angles of `leaves` seen from p, summed.
 double LeavesSolidAngle(const ProxyHierarchy& h, const std::vector<int>& leaves, const float p[3])
 {
@@ -521,10 +531,7 @@ double UnionSolidAngle(
     }
     for (int j : leaves)
     {
-      const double e[3] = { h.X[j] - p[0], h.Y[j] - p[1], h.Z[j] - p[2] };
-      const double along = e[0] * w[0] + e[1] * w[1] + e[2] * w[2];
-      const double r = h.R[j];
-      if (along > 0.0 && e[0] * e[0] + e[1] * e[1] + e[2] * e[2] - along * along < r * r)
+      if (RayMeetsSphere(p, w, h.X[j], h.Y[j], h.Z[j], h.R[j]))
       {
         ++hits;
         break;
@@ -561,10 +568,7 @@ float ScaleCutToUnion(Blockers& cut, const Blockers& leaves, const SoftShadows& 
     }
     for (std::size_t j = 0; j < leaves.Spheres(); ++j)
     {
-      const double e[3] = { leaves.X[j] - p[0], leaves.Y[j] - p[1], leaves.Z[j] - p[2] };
-      const double along = e[0] * w[0] + e[1] * w[1] + e[2] * w[2];
-      const double r = leaves.R[j];
-      if (along > 0.0 && e[0] * e[0] + e[1] * e[1] + e[2] * e[2] - along * along < r * r)
+      if (RayMeetsSphere(p, w, leaves.X[j], leaves.Y[j], leaves.Z[j], leaves.R[j]))
       {
         ++hits;
         break;
