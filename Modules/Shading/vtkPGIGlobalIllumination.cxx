@@ -170,6 +170,23 @@ struct ShadeScratch
   proxygi::BrightLightScratch Bright;
 };
 
+// The objects the proxies stand for, sorted and unique.
+std::vector<int> ProxyObjectsOf(const proxygi::Blockers& blockers)
+{
+  std::vector<int> objects(blockers.Object.begin(), blockers.Object.end());
+  std::sort(objects.begin(), objects.end());
+  objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
+  return objects;
+}
+
+// Whether a receiver's ObjectId names an object no proxy stands for (a
+// ground plane): it owns no spheres.
+bool NamesNoProxies(double id, const std::vector<int>& proxyObjects)
+{
+  return id >= 0.0 && id < (1 << 24) &&
+    !std::binary_search(proxyObjects.begin(), proxyObjects.end(), static_cast<int>(id));
+}
+
 // The receivers' precomputed own visibility (vtkPGISelfVisibility), where
 // it still holds; Line says why it runs or not (empty: no such array).
 struct SelfVisibilityInput
@@ -207,10 +224,7 @@ struct SelfVisibilityInput
     {
       return false;
     }
-    const double id = this->Objects->GetTuple1(i);
-    return id >= 0.0 && id < (1 << 24) &&
-      !std::binary_search(
-        this->ProxyObjects.begin(), this->ProxyObjects.end(), static_cast<int>(id));
+    return NamesNoProxies(this->Objects->GetTuple1(i), this->ProxyObjects);
   }
 };
 
@@ -1013,8 +1027,7 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
   const proxygi::Blockers& leaves = b.SceneBlockers;
   if (receiverIds && leaves.Object.size() == leaves.Spheres())
   {
-    std::vector<int> objects(leaves.Object.begin(), leaves.Object.end());
-    std::sort(objects.begin(), objects.end());
+    const std::vector<int> objects = ProxyObjectsOf(leaves);
     std::vector<double> first(clusters, std::numeric_limits<double>::quiet_NaN());
     std::vector<char> mixed(clusters, 0);
     for (vtkIdType i = 0; i < n; ++i)
@@ -1033,8 +1046,7 @@ bool vtkPGIGlobalIllumination::ClusterReceivers(vtkPolyData* receivers, vtkDataA
     }
     for (int k = 0; k < clusters; ++k)
     {
-      ownsNone[k] = !mixed[k] && first[k] >= 0.0 && first[k] < (1 << 24) &&
-        !std::binary_search(objects.begin(), objects.end(), static_cast<int>(first[k]));
+      ownsNone[k] = !mixed[k] && NamesNoProxies(first[k], objects);
     }
   }
   const proxygi::SoftShadows kernel(b.Kernel);
@@ -1180,10 +1192,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   if (!self.Logs && receiverObjects && sphereObjects.size() == b.SceneBlockers.Spheres())
   {
     self.Objects = receiverObjects;
-    self.ProxyObjects = sphereObjects;
-    std::sort(self.ProxyObjects.begin(), self.ProxyObjects.end());
-    self.ProxyObjects.erase(
-      std::unique(self.ProxyObjects.begin(), self.ProxyObjects.end()), self.ProxyObjects.end());
+    self.ProxyObjects = ProxyObjectsOf(b.SceneBlockers);
   }
   if (!self.Line.empty())
   {
