@@ -14,8 +14,9 @@
 //    (PREFIX-variations.md).
 // Writes a Markdown report and PNG plots (VTK charts: a display or xvfb-run).
 //
-//   ProxyGIBudgetReport --train A.csv --held-out B.csv [--embree E.csv,...]
-//                       [--plots scene,...] [--variations V.csv,...] --out PREFIX
+//   ProxyGIBudgetReport --train A.csv,... --held-out B.csv,... [--grid G,...]
+//                       [--embree E.csv,...] [--plots scene,...]
+//                       [--variations V.csv,...] --out PREFIX
 #include "pgiAccuracyBudget.h"
 
 #include "pgiBenchPlot.h"
@@ -206,7 +207,8 @@ void Evaluate(const Model& model, const std::vector<Measurement>& scene, bool he
         second = m.Settings == again.Settings ? &m : second;
       }
       if (second && second != ran &&
-        !FirstServesBetter(b, ran->CheckError, ran->Seconds, second->CheckError, second->Seconds))
+        !FirstServesBetter(
+          b, ran->CheckError, ran->Seconds, second->CheckError, second->Seconds, model.CheckMargin))
       {
         kept = again;
       }
@@ -303,7 +305,7 @@ std::string VariationTable(
 
 int main(int argc, char* argv[])
 {
-  std::string train, heldOut, out = "budget", embreeFiles, plotScenes, variationFiles;
+  std::string train, heldOut, out = "budget", embreeFiles, plotScenes, variationFiles, grids;
   for (int i = 1; i + 1 < argc; i += 2)
   {
     const std::string a = argv[i];
@@ -312,16 +314,42 @@ int main(int argc, char* argv[])
         : a == "--embree"     ? embreeFiles
         : a == "--plots"      ? plotScenes
         : a == "--variations" ? variationFiles
+        : a == "--grid"       ? grids
                               : out) = argv[i + 1];
   }
   std::vector<Measurement> trainRows, heldRows;
   std::string error;
-  if (!ReadMeasurements(Read(train), trainRows, error) ||
-    !ReadMeasurements(Read(heldOut), heldRows, error) || trainRows.empty())
+  // Each of --train and --held-out: CSV files, comma separated.
+  const auto readAll = [&](const std::string& files, std::vector<Measurement>& rows)
+  {
+    for (const std::string& file : Split(files))
+    {
+      std::vector<Measurement> some;
+      if (!ReadMeasurements(Read(file), some, error))
+      {
+        return false;
+      }
+      rows.insert(rows.end(), some.begin(), some.end());
+    }
+    return true;
+  };
+  if (!readAll(train, trainRows) || !readAll(heldOut, heldRows) || trainRows.empty())
   {
     std::fprintf(stderr, "ProxyGIBudgetReport: %s\n",
       error.empty() ? "no measurements (--train, --held-out)" : error.c_str());
     return 1;
+  }
+  // As proxygi calibrate --fit --grid: only those candidates' runs.
+  if (!grids.empty())
+  {
+    std::vector<Knobs> grid;
+    if (!NamedGrids(Split(grids), grid, error))
+    {
+      std::fprintf(stderr, "ProxyGIBudgetReport: --grid: %s\n", error.c_str());
+      return 1;
+    }
+    trainRows = InGrid(trainRows, grid);
+    heldRows = InGrid(heldRows, grid);
   }
   // Embree's curve per scene: spp, seconds, error.
   std::map<std::string, std::vector<std::array<double, 3>>> embree;
@@ -365,6 +393,11 @@ int main(int argc, char* argv[])
   }
 
   std::ofstream md(out + ".md");
+  if (!md)
+  {
+    std::fprintf(stderr, "ProxyGIBudgetReport: cannot write %s.md\n", out.c_str());
+    return 1;
+  }
   md << "Measurements: " << trainRows.size() << " runs on " << Scenes(trainRows).size()
      << " training scenes, " << heldRows.size() << " on " << Scenes(heldRows).size()
      << " held-out scenes; " << all.Candidates.size()
@@ -549,7 +582,12 @@ int main(int argc, char* argv[])
   const std::string table = VariationTable(variations, defaults);
   if (!table.empty())
   {
-    std::ofstream(out + "-variations.md") << table;
+    std::ofstream variationsFile(out + "-variations.md");
+    if (!(variationsFile << table))
+    {
+      std::fprintf(stderr, "ProxyGIBudgetReport: cannot write %s-variations.md\n", out.c_str());
+      return 1;
+    }
     std::printf("%s", table.c_str());
   }
 
@@ -615,6 +653,12 @@ int main(int argc, char* argv[])
     // Linked as Documentation/AccuracyTime.md includes the text.
     md << "\n![" << scene << "](figures/" << png.substr(png.rfind('/') + 1) << ")\n";
     std::printf("wrote %s (%s)\n", png.c_str(), scene.c_str());
+  }
+  md.flush();
+  if (!md)
+  {
+    std::fprintf(stderr, "ProxyGIBudgetReport: cannot write %s.md\n", out.c_str());
+    return 1;
   }
   std::printf("wrote %s.md\n", out.c_str());
   return 0;

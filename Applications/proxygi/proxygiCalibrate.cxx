@@ -53,7 +53,10 @@ the model that ships. The times are this machine's, with all its threads.
                       variations (exp OL and PS*, hierarchy angle 0 and 45,
                       per-object blocking, 4 and 64 rays per bright light,
                       each alone around the order 4 and 6 candidates with
-                      traced self-visibility: 52), or both
+                      traced self-visibility: 52), trades (of those, the
+                      45-degree cuts and the 4 rays: 16), or several; with
+                      --fit, only these candidates' runs are fitted (no
+                      --grid: every run)
   --mapper-orders L   the mapper's orders (default 3,4; 6 is its most: on
                       llvmpipe one of its frames takes 2-9 s)
   --mapper-renderer N with --fit: the GL renderer the mapper's runs were
@@ -149,15 +152,15 @@ int RunCalibrate(const Args& args)
   const bool mapperRoute = std::find(routes.begin(), routes.end(),
                              budget::RouteName(budget::Route::Mapper)) != routes.end();
   std::string mapperRenderer = Option(args, "--mapper-renderer", "");
+  // With --fit, --grid keeps only its candidates' runs (none given: all).
+  const std::string gridNames = Option(args, "--grid", "");
   std::vector<std::string> grids;
-  SplitList(Option(args, "--grid", "default"), grids);
-  const bool defaultGrid = std::find(grids.begin(), grids.end(), "default") != grids.end();
-  const bool variationGrid = std::find(grids.begin(), grids.end(), "variations") != grids.end();
-  if (grids.empty() ||
-    std::any_of(grids.begin(), grids.end(),
-      [](const std::string& g) { return g != "default" && g != "variations"; }))
+  SplitList(gridNames.empty() ? std::string("default") : gridNames, grids);
+  std::vector<budget::Knobs> filterGrid;
+  std::string gridError;
+  if (!budget::NamedGrids(grids, filterGrid, gridError))
   {
-    vtkLogF(ERROR, "proxygi calibrate: --grid takes default, variations or default,variations");
+    vtkLogF(ERROR, "proxygi calibrate: --grid: %s", gridError.c_str());
     return 2;
   }
   if (!(filterRoute || mapperRoute) ||
@@ -193,6 +196,13 @@ int RunCalibrate(const Args& args)
       }
       rows.insert(rows.end(), some.begin(), some.end());
     }
+    if (!gridNames.empty())
+    {
+      const std::size_t measured = rows.size();
+      rows = budget::InGrid(rows, filterGrid);
+      std::printf(
+        "fit: %zu of %zu runs in the grid %s\n", rows.size(), measured, gridNames.c_str());
+    }
   }
   else
   {
@@ -213,14 +223,9 @@ int RunCalibrate(const Args& args)
       scenes.push_back(std::string());
     }
     std::vector<budget::Knobs> grid, mapperGrid;
-    if (filterRoute && defaultGrid)
+    if (filterRoute)
     {
-      grid = budget::DefaultGrid();
-    }
-    if (filterRoute && variationGrid)
-    {
-      const auto more = budget::VariationGrid();
-      grid.insert(grid.end(), more.begin(), more.end());
+      grid = filterGrid;
     }
     if (mapperRoute)
     {

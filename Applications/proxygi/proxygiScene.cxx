@@ -756,10 +756,19 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       o.Gpu() ? "a GI frame" : "SH shading", seconds, o.Chosen.PredictedSeconds);
     if (attempt == 1)
     {
-      if (budget::FirstServesBetter(o.Budget, first.Estimated, first.Seconds, estimated, seconds))
+      // An estimate just under the budget may be the check's own error.
+      char margin[96] = "";
+      if (o.Budget.HasError && o.Model.CheckMargin > 1.0)
       {
-        std::printf("budget check: the first choice serves the budget better: kept (%s)\n",
-          first.Chosen.Settings.Describe().c_str());
+        std::snprintf(margin, sizeof(margin),
+          " (an estimate meets it when %.2f times it does: the check's margin)",
+          o.Model.CheckMargin);
+      }
+      if (budget::FirstServesBetter(
+            o.Budget, first.Estimated, first.Seconds, estimated, seconds, o.Model.CheckMargin))
+      {
+        std::printf("budget check: the first choice serves the budget better%s: kept (%s)\n",
+          margin, first.Chosen.Settings.Describe().c_str());
         proxies = first.Proxies;
         receiversIn = first.Receivers;
         shaded = first.Shaded;
@@ -774,7 +783,7 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
       }
       else
       {
-        std::printf("budget check: the new choice serves the budget better: kept\n");
+        std::printf("budget check: the new choice serves the budget better%s: kept\n", margin);
       }
       break;
     }
@@ -782,8 +791,10 @@ int RunRenderScene(const Args& args, const std::string& scenePath)
     // auto where the mapper's times hold, else the mode's own.
     const budget::Choice again =
       budget::Recheck(o.Model, o.Features, o.Budget, o.Chosen, estimated, seconds, o.Allowed);
-    std::printf("budget check: this scene's errors scaled by %.2f, its times by %.2f\n",
-      o.Features.ErrorScale, o.Features.TimeScale);
+    std::printf("budget check: this scene's errors scaled by %.2f (candidates %s; the others "
+                "by %.2f), its times by %.2f\n",
+      o.Features.ErrorScale, budget::CheckFamilyName(o.Chosen.Settings).c_str(),
+      o.Features.OtherErrorScale, o.Features.TimeScale);
     if (again.Candidate == o.Chosen.Candidate)
     {
       std::printf("budget check: the choice stands (%s)\n", again.Settings.Describe().c_str());

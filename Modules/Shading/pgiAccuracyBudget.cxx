@@ -342,6 +342,60 @@ std::vector<Knobs> VariationGrid()
   return grid;
 }
 
+std::vector<Knobs> TradeGrid()
+{
+  std::vector<Knobs> grid;
+  for (const Knobs& k : VariationGrid())
+  {
+    if (k.HierarchyAngle == 45.0 || k.BrightLightRays == 4)
+    {
+      grid.push_back(k);
+    }
+  }
+  return grid;
+}
+
+bool NamedGrids(const std::vector<std::string>& names, std::vector<Knobs>& grid, std::string& error)
+{
+  grid.clear();
+  error = names.empty() ? "no grid named" : "";
+  for (const std::string& name : names)
+  {
+    const std::vector<Knobs> some = name == "default" ? DefaultGrid()
+      : name == "trades"                              ? TradeGrid()
+      : name == "variations"                          ? VariationGrid()
+                                                      : std::vector<Knobs>();
+    if (some.empty())
+    {
+      error = "unknown grid '" + name + "' (default, trades, variations)";
+      return false;
+    }
+    for (const Knobs& k : some)
+    {
+      if (std::find(grid.begin(), grid.end(), k) == grid.end())
+      {
+        grid.push_back(k);
+      }
+    }
+  }
+  return !grid.empty();
+}
+
+std::vector<Measurement> InGrid(
+  const std::vector<Measurement>& rows, const std::vector<Knobs>& grid)
+{
+  std::vector<Measurement> kept;
+  for (const Measurement& m : rows)
+  {
+    if (m.Settings.Backend == Route::Mapper ||
+      std::find(grid.begin(), grid.end(), m.Settings) != grid.end())
+    {
+      kept.push_back(m);
+    }
+  }
+  return kept;
+}
+
 std::vector<Knobs> MapperGrid()
 {
   std::vector<Knobs> grid;
@@ -622,8 +676,66 @@ bool Model::Fit(const std::vector<Measurement>& rows, std::string& error)
     sum += e * e;
   }
   this->ErrorSpread = std::sqrt(sum / std::max<std::size_t>(1, used.size()));
+  // The check's estimate has its own error (the cheap run's noise is known
+  // to a few percent, and it is most of the sum at a few samples).
+  std::vector<double> underestimate;
+  for (const Measurement& m : rows)
+  {
+    if (m.CheckError > 0.0 && m.Error > 0.0 && Finite(m.CheckError))
+    {
+      underestimate.push_back(m.Error / m.CheckError);
+    }
+  }
+  // The check's transfer: each scene's mean log residual per family, and
+  // the slope of one family's on another's over the scenes with both.
+  std::map<std::string, std::map<int, std::pair<double, int>>> residuals;
+  for (std::size_t r = 0; r < used.size(); ++r)
+  {
+    auto& cell =
+      residuals[used[r]->Scene][CheckFamily(this->Candidates[usedCandidate[r]].Settings)];
+    cell.first +=
+      std::log(used[r]->Error / this->PredictError(usedCandidate[r], used[r]->Features));
+    ++cell.second;
+  }
+  double xy = 0.0, xx = 0.0;
+  int pairs = 0;
+  for (const auto& scene : residuals)
+  {
+    for (const auto& a : scene.second)
+    {
+      for (const auto& b : scene.second)
+      {
+        if (a.first != b.first)
+        {
+          const double x = a.second.first / a.second.second;
+          xy += x * (b.second.first / b.second.second);
+          xx += x * x;
+          ++pairs;
+        }
+      }
+    }
+  }
+  this->CheckTransfer = pairs >= 6 && xx > 0.0 ? std::clamp(xy / xx, 0.0, 1.0) : 1.0;
+  this->CheckMargin = 1.0;
+  if (underestimate.size() >= 8)
+  {
+    const auto at = underestimate.begin() + (3 * (underestimate.size() - 1)) / 4;
+    std::nth_element(underestimate.begin(), at, underestimate.end());
+    this->CheckMargin = std::clamp(*at, 1.0, 1.5);
+  }
   this->Scenes = static_cast<int>(scenes.size());
   return true;
+}
+
+int CheckFamily(const Knobs& k)
+{
+  return 2 * static_cast<int>(k.Backend) + (k.SelfVisibility > 0 ? 1 : 0);
+}
+
+std::string CheckFamilyName(const Knobs& k)
+{
+  return std::string(k.Backend == Route::Mapper ? "of the GPU mapper" : "of the CPU filter") +
+    (k.SelfVisibility > 0 ? " with traced self-visibility" : " with the self-shadow rules");
 }
 
 double ProxySpheres(const SceneFeatures& f, const Knobs& k)
@@ -647,7 +759,9 @@ double Model::PredictError(std::size_t k, const SceneFeatures& f) const
                                                                 : this->ErrorWeights)[j] *
       x[j];
   }
-  return f.ErrorScale * std::exp(s);
+  const bool scaled =
+    f.ScaledFamily < 0 || CheckFamily(this->Candidates[k].Settings) == f.ScaledFamily;
+  return (scaled ? f.ErrorScale : f.OtherErrorScale) * std::exp(s);
 }
 
 std::string Model::Write() const
@@ -676,6 +790,14 @@ std::string Model::Write() const
     }
   }
   s << "\nerror_spread " << this->ErrorSpread << "\n";
+  if (this->CheckMargin != 1.0)
+  {
+    s << "check_margin " << this->CheckMargin << "\n";
+  }
+  if (this->CheckTransfer != 1.0)
+  {
+    s << "check_transfer " << this->CheckTransfer << "\n";
+  }
   s << "# order indirect_order spheres self_visibility shadowed hierarchy | a m b c d (s) | u v "
        "| route [exp=M] [blocking=object] [bright_rays=N] (knobs off their defaults)\n";
   for (const Candidate& c : this->Candidates)
@@ -756,6 +878,16 @@ bool Model::Read(const std::string& text, std::string& error)
     else if (key == "error_spread")
     {
       ok = static_cast<bool>(words >> m.ErrorSpread) && Finite(m.ErrorSpread);
+    }
+    else if (key == "check_transfer")
+    {
+      ok = static_cast<bool>(words >> m.CheckTransfer) && m.CheckTransfer >= 0.0 &&
+        m.CheckTransfer <= 1.0;
+    }
+    else if (key == "check_margin")
+    {
+      ok =
+        static_cast<bool>(words >> m.CheckMargin) && m.CheckMargin >= 1.0 && m.CheckMargin <= 2.0;
     }
     else if (key == "candidate")
     {
@@ -1002,7 +1134,16 @@ Choice Recheck(const Model& model, SceneFeatures& scene, const Budget& budget, c
 {
   if (measuredError > 0.0 && ran.PredictedError > 0.0 && Finite(measuredError))
   {
-    scene.ErrorScale *= measuredError / ran.PredictedError;
+    // A knob that fails on this scene's meshes (the rules on thin limbs)
+    // says less about the other families than about its own.
+    const double ratio = measuredError / ran.PredictedError;
+    if (scene.ScaledFamily < 0)
+    {
+      scene.OtherErrorScale = scene.ErrorScale;
+    }
+    scene.ScaledFamily = CheckFamily(ran.Settings);
+    scene.ErrorScale *= ratio;
+    scene.OtherErrorScale *= std::pow(ratio, model.CheckTransfer);
   }
   if (measuredSeconds > 0.0 && ran.PredictedSeconds > 0.0 && Finite(measuredSeconds))
   {
@@ -1011,11 +1152,14 @@ Choice Recheck(const Model& model, SceneFeatures& scene, const Budget& budget, c
   return Choose(model, scene, budget, allowed);
 }
 
-bool FirstServesBetter(
-  const Budget& budget, double errorA, double secondsA, double errorB, double secondsB)
+bool FirstServesBetter(const Budget& budget, double errorA, double secondsA, double errorB,
+  double secondsB, double errorMargin)
 {
   const auto meets = [&](double e, double t)
-  { return (!budget.HasError || e <= budget.Error) && (!budget.HasTime || t <= budget.Seconds); };
+  {
+    return (!budget.HasError || e * errorMargin <= budget.Error) &&
+      (!budget.HasTime || t <= budget.Seconds);
+  };
   const bool a = meets(errorA, secondsA), b = meets(errorB, secondsB);
   if (a != b)
   {

@@ -94,6 +94,15 @@ PROXYGISHADING_EXPORT std::vector<Knobs> DefaultGrid();
 /// and 45 degrees, exp OL and PS*, per-object blocking (shadowed bounce
 /// only), 4 and 64 rays per bright light.
 PROXYGISHADING_EXPORT std::vector<Knobs> VariationGrid();
+/// The variations that trade time for error (AccuracyTime.md section 22):
+/// hierarchy cuts at 45 degrees and 4 rays per bright light, around the
+/// same candidates as VariationGrid.
+PROXYGISHADING_EXPORT std::vector<Knobs> TradeGrid();
+/// The filter's candidates of the grids named (default, trades,
+/// variations; repeats counted once). False, with the name, for an unknown
+/// one.
+PROXYGISHADING_EXPORT bool NamedGrids(
+  const std::vector<std::string>& names, std::vector<Knobs>& grid, std::string& error);
 /// The GPU mapper's grid (`proxygi calibrate --routes mapper`): orders 3, 4,
 /// 6 (its most), 16 or 64 spheres, shadowed or unshadowed bounce; the rules,
 /// no hierarchy cuts, the bounce at the order.
@@ -118,8 +127,11 @@ struct PROXYGISHADING_EXPORT SceneFeatures
   /// (its projection is a fixed cost).
   double BrightLights = 0.0, Map = 0.0;
   /// Measured over predicted error and time on this scene, from a check
-  /// (Recheck; 1: none). They scale every prediction.
-  double ErrorScale = 1.0, TimeScale = 1.0;
+  /// (Recheck; 1: none). TimeScale scales every prediction, ErrorScale the
+  /// errors of the checked candidate's family (CheckFamily; all where
+  /// ScaledFamily is -1), OtherErrorScale the other families'.
+  double ErrorScale = 1.0, TimeScale = 1.0, OtherErrorScale = 1.0;
+  int ScaledFamily = -1;
 
   /// Receivers, spheres and objects as given, the light's terms from `map`
   /// (nullptr: a uniform sky, both 0).
@@ -127,6 +139,13 @@ struct PROXYGISHADING_EXPORT SceneFeatures
   /// Both light terms from a vtkPGILighting (its map, or its uniform sky).
   bool SetLight(vtkPGILighting* lighting, std::string& error);
 };
+
+/// Candidates whose errors a check's surprise carries over to in full: the
+/// same route and the same self-shadowing (traced or the rules). Across
+/// families it carries over by Model::CheckTransfer.
+PROXYGISHADING_EXPORT int CheckFamily(const Knobs& k);
+/// In words: "of the CPU filter with traced self-visibility", ...
+PROXYGISHADING_EXPORT std::string CheckFamilyName(const Knobs& k);
 
 /// The leaf spheres a candidate shades with on a scene, P of the time law:
 /// the proxies' own count where the features have it (a mesh that is a
@@ -156,6 +175,10 @@ struct PROXYGISHADING_EXPORT Measurement
 PROXYGISHADING_EXPORT std::string WriteMeasurements(const std::vector<Measurement>& rows);
 PROXYGISHADING_EXPORT bool ReadMeasurements(
   const std::string& text, std::vector<Measurement>& rows, std::string& error);
+/// `rows` without the filter's runs of candidates not in `grid` (the
+/// mapper's are kept).
+PROXYGISHADING_EXPORT std::vector<Measurement> InGrid(
+  const std::vector<Measurement>& rows, const std::vector<Knobs>& grid);
 
 class PROXYGISHADING_EXPORT Model
 {
@@ -175,6 +198,16 @@ public:
   /// RMS of the fit's log-error residuals: exp(+-spread) brackets ~2/3 of
   /// the scenes.
   double ErrorSpread = 0.0;
+  /// How far the check's cheap estimate (Embree at a few samples,
+  /// EstimatedRelativeRMSE) may sit below the error it estimates: the 75th
+  /// percentile of measured / estimated over the fit's runs (1: none
+  /// recorded). A checked run meets an error budget only within it.
+  double CheckMargin = 1.0;
+  /// How much of a check's log(measured / predicted) error on one family
+  /// (CheckFamily) holds for the others: the slope, through 0, of one
+  /// family's mean log residual per scene on another's over the fit's
+  /// scenes, in [0, 1] (1: none recorded, every candidate scaled alike).
+  double CheckTransfer = 1.0;
   std::string Machine; ///< where the times were measured
   /// The GL renderer the GPU mapper's times were measured on (empty: the
   /// model has no mapper candidates).
@@ -267,9 +300,11 @@ PROXYGISHADING_EXPORT Choice Recheck(const Model& model, SceneFeatures& scene, c
 /// Of two runs measured (error, seconds), the one that serves `budget`
 /// better: one that meets it over one that does not; of two that do, the
 /// faster for an error budget, the more accurate for a time budget; of two
-/// that do not, the more accurate (error budget) or the faster. True: `a`.
-PROXYGISHADING_EXPORT bool FirstServesBetter(
-  const Budget& budget, double errorA, double secondsA, double errorB, double secondsB);
+/// that do not, the more accurate (error budget) or the faster. An error
+/// meets the budget when error * errorMargin does (Model::CheckMargin for
+/// the check's estimates). True: `a`.
+PROXYGISHADING_EXPORT bool FirstServesBetter(const Budget& budget, double errorA, double secondsA,
+  double errorB, double secondsB, double errorMargin = 1.0);
 
 /// Whether a GL renderer's name (GL_RENDERER, or a description holding it)
 /// is a software rasteriser: llvmpipe, softpipe, swrast ("software").

@@ -174,6 +174,39 @@ int TestAccuracyBudget(int, char*[])
     "negative time refused");
   ok &= Check(!Model().Read("version 2\nnonsense\n", error), "unknown line refused");
 
+  // The check's margin: the 75th percentile of measured / estimated over
+  // the runs that recorded an estimate; none recorded, none written.
+  ok &= Check(model.CheckMargin == 1.0 && model.Write().find("check_margin") == std::string::npos,
+    "no estimates: no check margin");
+  std::vector<Measurement> checked = rows;
+  for (std::size_t i = 0; i < checked.size(); ++i)
+  {
+    checked[i].CheckError = checked[i].Error / (1.0 + 0.01 * static_cast<double>(i));
+  }
+  Model withMargin;
+  Model marginRead;
+  ok &= Check(withMargin.Fit(checked, error) && Near(withMargin.CheckMargin, 1.12, 1e-12) &&
+      marginRead.Read(withMargin.Write(), error) &&
+      Near(marginRead.CheckMargin, withMargin.CheckMargin, 1e-8),
+    "check margin fitted (1.12 of 1.00-1.17) and read back");
+  ok &= Check(!Model().Read("version 2\ncheck_margin 0.9\n", error), "check margin < 1 refused");
+
+  // Of two checked runs, the one serving the budget better. The default
+  // scene's check: 3.43% in 0.275 s, then 5.93% in 0.151 s for 6%.
+  {
+    Budget six;
+    six.SetError(0.06);
+    ok &= Check(!FirstServesBetter(six, 0.0343, 0.275, 0.0593, 0.151), "both meet 6%: the faster");
+    ok &= Check(FirstServesBetter(six, 0.0343, 0.275, 0.0593, 0.151, 1.05),
+      "5.93% is not within 6% / 1.05: the one that meets it");
+    ok &= Check(FirstServesBetter(six, 0.07, 0.3, 0.08, 0.1), "neither meets: the more accurate");
+    Budget fast;
+    fast.SetSeconds(0.2);
+    ok &= Check(!FirstServesBetter(fast, 0.03, 0.25, 0.06, 0.15, 1.05),
+      "a time budget: the margin is the error's only");
+    ok &= Check(FirstServesBetter(fast, 0.03, 0.15, 0.04, 0.12), "both fit: the more accurate");
+  }
+
   // Measurements survive CSV.
   std::vector<Measurement> back;
   ok &=
@@ -187,6 +220,52 @@ int TestAccuracyBudget(int, char*[])
   ok &= Check(Near(model.PredictError(1, scaled), 1.5 * model.PredictError(1, probe), 1e-12) &&
       Near(model.PredictSeconds(1, scaled), model.PredictSeconds(1, probe), 1e-12),
     "ErrorScale");
+
+  // The check's transfer across families (CheckFamily): the fast candidate
+  // takes the self-shadow rules. The same surprise on every candidate of a
+  // scene carries over in full; one on the rules alone hardly at all.
+  {
+    const double surprise[6] = { 0.4, -0.3, 0.2, -0.5, 0.3, -0.1 };
+    std::vector<Measurement> alike = rows, rulesOnly = rows;
+    for (std::size_t i = 0; i < rows.size(); ++i)
+    {
+      const bool rules = rows[i].Settings.Order == 3;
+      const double d = std::exp(surprise[i / 3]);
+      alike[i].Settings.SelfVisibility = rulesOnly[i].Settings.SelfVisibility = rules ? 0 : 256;
+      alike[i].Error *= d;
+      rulesOnly[i].Error *= rules ? d : 1.0;
+    }
+    Model fitAlike, fitRulesOnly;
+    ok &= Check(fitAlike.Fit(alike, error) && fitRulesOnly.Fit(rulesOnly, error), "transfer fits");
+    std::printf("check transfer: %.4f alike, %.4f the rules alone\n", fitAlike.CheckTransfer,
+      fitRulesOnly.CheckTransfer);
+    ok &= Check(Near(fitAlike.CheckTransfer, 1.0, 1e-9), "one surprise for all: transfer 1");
+    ok &= Check(fitRulesOnly.CheckTransfer < 0.3, "the rules' surprise alone: transfer < 0.3");
+    Model read3;
+    ok &= Check(read3.Read(fitRulesOnly.Write(), error) &&
+        Near(read3.CheckTransfer, fitRulesOnly.CheckTransfer, 1e-8),
+      "transfer read back");
+    ok &= Check(!Model().Read("version 2\ncheck_transfer 1.5\n", error), "transfer > 1 refused");
+
+    // Recheck: the rules measured at 4 times their prediction scale their
+    // own family by 4 and the traced candidates by 4^transfer.
+    Model handSet = fitRulesOnly;
+    handSet.CheckTransfer = 0.25;
+    Choice ran;
+    ran.Candidate = 0;
+    ran.Settings = handSet.Candidates[0].Settings;
+    ran.PredictedError = handSet.PredictError(0, probe);
+    ran.PredictedSeconds = handSet.PredictSeconds(0, probe);
+    Budget five;
+    five.SetError(0.05);
+    SceneFeatures checkedScene = probe;
+    Recheck(handSet, checkedScene, five, ran, 4.0 * ran.PredictedError, ran.PredictedSeconds);
+    ok &= Check(handSet.Candidates[0].Settings.SelfVisibility == 0 &&
+        Near(handSet.PredictError(0, checkedScene), 4.0 * handSet.PredictError(0, probe), 1e-12) &&
+        Near(handSet.PredictError(2, checkedScene), std::sqrt(2.0) * handSet.PredictError(2, probe),
+          1e-12),
+      "Recheck: x4 on the checked family, x4^0.25 on the others");
+  }
 
   // The choice. Predictions on the probe:
   double e[3], t[3];
