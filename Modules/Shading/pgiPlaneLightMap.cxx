@@ -516,12 +516,17 @@ bool PlaneLightMap::Scale(
 
 namespace
 {
+// Directions of a tile's union test: a tile's scale is one of many a
+// receiver averages over (a lone sphere's blocked share within ~1%).
+constexpr int TileDirections = 512;
+
 // One thread's buffers for a range of grid points.
 struct FillScratch
 {
   std::vector<float> Points, Normals, Visibilities;
   std::vector<sh::Status> Statuses;
-  std::vector<int> Used;
+  std::vector<int> Used, Indices;
+  Blockers Scaled;
   BrightLightScratch Bright;
 };
 
@@ -534,55 +539,88 @@ void FillPlaneLightMap(PlaneLightMap& map, int plane, const BakedScene& b,
   float residual[3];
   b.OpenShading->ShadeUnshadowed(m, residual);
   float* scales = map.Scales();
-  vtkSMPTools::For(0, map.GetNumberOfPoints(), 256,
-    [&](vtkIdType first, vtkIdType last)
+  // Tiles of grid points: overlapping spheres near the plane (an arch's
+  // tube) block far more in the SH than their union, as over a ground's
+  // receivers; each tile shades with the blockers scaled at its centre to
+  // block what the union blocks (ScaleCutToUnion).
+  const int columns = map.GetColumns(), rows = map.GetRows();
+  const int tilesU = (columns + PlaneLightMap::TileSide - 1) / PlaneLightMap::TileSide;
+  const int tilesV = (rows + PlaneLightMap::TileSide - 1) / PlaneLightMap::TileSide;
+  vtkSMPTools::For(0, static_cast<vtkIdType>(tilesU) * tilesV, 1,
+    [&](vtkIdType firstTile, vtkIdType lastTile)
     {
       FillScratch& buffers = perThread.Local();
-      const int count = static_cast<int>(last - first);
-      buffers.Points.resize(3 * count);
-      buffers.Normals.resize(3 * count);
-      buffers.Visibilities.resize(static_cast<std::size_t>(n2) * count);
-      buffers.Statuses.resize(count);
-      buffers.Used.resize(count);
-      for (int j = 0; j < count; ++j)
+      for (vtkIdType tile = firstTile; tile < lastTile; ++tile)
       {
-        map.Point(static_cast<int>(first) + j, &buffers.Points[3 * j]);
-        std::copy_n(m, 3, &buffers.Normals[3 * j]);
-      }
-      // Every sphere is another object's: the plane's contact shadows stay dark.
-      SelfVisibility plane;
-      plane.OwnsNoSpheres = true;
-      how.Shadows->VisibilityBatch(count, buffers.Points.data(), buffers.Normals.data(), blockers,
-        buffers.Visibilities.data(), buffers.Statuses.data(), buffers.Used.data(), nullptr, plane);
-      for (int j = 0; j < count; ++j)
-      {
-        float* scale = &scales[3 * (first + j)];
-        PlaneShadowScaleAt(*b.OpenShading, m, &buffers.Visibilities[n2 * j], buffers.Used[j],
-          buffers.Statuses[j], scale);
-        if (!how.Bright)
+        const int u0 = static_cast<int>(tile % tilesU) * PlaneLightMap::TileSide;
+        const int v0 = static_cast<int>(tile / tilesU) * PlaneLightMap::TileSide;
+        const int u1 = std::min(columns, u0 + PlaneLightMap::TileSide);
+        const int v1 = std::min(rows, v0 + PlaneLightMap::TileSide);
+        buffers.Indices.clear();
+        for (int v = v0; v < v1; ++v)
         {
-          continue;
+          for (int u = u0; u < u1; ++u)
+          {
+            buffers.Indices.push_back(v * columns + u);
+          }
         }
-        // The bright lights' share: lit over unshadowed, weighed against the
-        // residual's by their light on the plane.
-        const float* q = &buffers.Points[3 * j];
-        float lit[3] = { 0, 0, 0 }, open[3] = { 0, 0, 0 };
-        if (how.Occluder)
+        const int count = static_cast<int>(buffers.Indices.size());
+        buffers.Points.resize(3 * count);
+        buffers.Normals.resize(3 * count);
+        buffers.Visibilities.resize(static_cast<std::size_t>(n2) * count);
+        buffers.Statuses.resize(count);
+        buffers.Used.resize(count);
+        for (int j = 0; j < count; ++j)
         {
-          BrightLightsFromRays(
-            *how.Bright, blockers, *how.Occluder, q, m, how.RayOffset, buffers.Bright, lit);
+          map.Point(buffers.Indices[j], &buffers.Points[3 * j]);
+          std::copy_n(m, 3, &buffers.Normals[3 * j]);
         }
-        else
-        {
-          BrightLightsFromProxies(*how.Bright, blockers, q, m, how.MinAngle, how.ShadowsOn, lit);
-        }
-        BrightLightsFromProxies(*how.Bright, blockers, q, m, how.MinAngle, false, open);
+        float centre[3], corner[3];
+        map.Point(v0 * columns + u0, centre);
+        map.Point((v1 - 1) * columns + (u1 - 1), corner);
         for (int c = 0; c < 3; ++c)
         {
-          const float whole = residual[c] + open[c];
-          if (whole > 0.0f)
+          centre[c] = 0.5f * (centre[c] + corner[c]);
+        }
+        buffers.Scaled = blockers;
+        const bool scaled =
+          ScaleCutToUnion(buffers.Scaled, blockers, *how.Shadows, centre, m, TileDirections) < 1.0f;
+        // Every sphere is another object's: the plane's contact shadows stay dark.
+        SelfVisibility plane;
+        plane.OwnsNoSpheres = true;
+        how.Shadows->VisibilityBatch(count, buffers.Points.data(), buffers.Normals.data(),
+          scaled ? buffers.Scaled : blockers, buffers.Visibilities.data(), buffers.Statuses.data(),
+          buffers.Used.data(), nullptr, plane);
+        for (int j = 0; j < count; ++j)
+        {
+          float* scale = &scales[3 * static_cast<std::size_t>(buffers.Indices[j])];
+          PlaneShadowScaleAt(*b.OpenShading, m, &buffers.Visibilities[n2 * j], buffers.Used[j],
+            buffers.Statuses[j], scale);
+          if (!how.Bright)
           {
-            scale[c] = std::min(1.0f, (residual[c] * scale[c] + lit[c]) / whole);
+            continue;
+          }
+          // The bright lights' share: lit over unshadowed, weighed against the
+          // residual's by their light on the plane.
+          const float* q = &buffers.Points[3 * j];
+          float lit[3] = { 0, 0, 0 }, open[3] = { 0, 0, 0 };
+          if (how.Occluder)
+          {
+            BrightLightsFromRays(
+              *how.Bright, blockers, *how.Occluder, q, m, how.RayOffset, buffers.Bright, lit);
+          }
+          else
+          {
+            BrightLightsFromProxies(*how.Bright, blockers, q, m, how.MinAngle, how.ShadowsOn, lit);
+          }
+          BrightLightsFromProxies(*how.Bright, blockers, q, m, how.MinAngle, false, open);
+          for (int c = 0; c < 3; ++c)
+          {
+            const float whole = residual[c] + open[c];
+            if (whole > 0.0f)
+            {
+              scale[c] = std::min(1.0f, (residual[c] * scale[c] + lit[c]) / whole);
+            }
           }
         }
       }

@@ -91,6 +91,9 @@ public:
    */
   void SetSky(const EnvironmentMap& map);
   static constexpr int SkyBins = 32, SkyHeights = 64;
+  /// Grid points along a tile's side: each tile is shaded with the blockers
+  /// scaled at its centre to block what their union blocks.
+  static constexpr int TileSide = 8;
   /// Rows of directions per bin (at s = (r + 0.5) / SkyRows) the visibility is read at.
   static constexpr int SkyRows = 8;
   static_assert(SkyRows >= 2, "the visibility is read between two rows");
@@ -197,7 +200,9 @@ struct PROXYGISHADING_EXPORT PlaneLightMapShading
 
 /**
  * One map per blocker plane of `scene`, laid out and filled: the proxies'
- * visibility at each grid point (every leaf sphere, the plane's normal) and
+ * visibility at each grid point (every leaf sphere, the plane's normal;
+ * per tile of TileSide x TileSide points the spheres scaled to block what
+ * their union blocks at its centre, ScaleCutToUnion) and
  * the bright lights' shadows there, blended by their shares of the plane's
  * light (as PlaneShadowScale and BrightLightsOnPlane do per receiver), and
  * the sky below the horizon along `directions` look-up directions. Threaded

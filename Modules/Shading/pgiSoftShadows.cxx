@@ -543,7 +543,7 @@ double UnionSolidAngle(
 } // namespace
 
 float ScaleCutToUnion(Blockers& cut, const Blockers& leaves, const SoftShadows& kernel,
-  const float p[3], const float n[3])
+  const float p[3], const float n[3], int directions)
 {
   const int order = kernel.GetOrder(), n2 = order * order;
   if (cut.Spheres() == 0 || kernel.GetAccumulationOrder() != order)
@@ -551,15 +551,15 @@ float ScaleCutToUnion(Blockers& cut, const Blockers& leaves, const SoftShadows& 
     return 1.0f;
   }
   // The union's cosine-weighted share of the hemisphere.
-  constexpr int Directions = 2048;
+  const int samples = std::max(16, directions);
   const double axis[3] = { n[0], n[1], n[2] };
   double t[3], b[3];
   FrameAbout(axis, t, b);
   const double golden = sh::Pi * (3.0 - std::sqrt(5.0));
   int hits = 0;
-  for (int k = 0; k < Directions; ++k)
+  for (int k = 0; k < samples; ++k)
   {
-    const double u = (k + 0.5) / Directions, side = std::sqrt(u), up = std::sqrt(1.0 - u);
+    const double u = (k + 0.5) / samples, side = std::sqrt(u), up = std::sqrt(1.0 - u);
     const double c = std::cos(golden * k), s = std::sin(golden * k);
     double w[3];
     for (int q = 0; q < 3; ++q)
@@ -575,7 +575,7 @@ float ScaleCutToUnion(Blockers& cut, const Blockers& leaves, const SoftShadows& 
       }
     }
   }
-  const double covered = static_cast<double>(hits) / Directions;
+  const double covered = static_cast<double>(hits) / samples;
   if (cut.Ratio.size() != static_cast<std::size_t>(order) * cut.Spheres())
   {
     cut.Ratio.assign(static_cast<std::size_t>(order) * cut.Spheres(), 1.0f);

@@ -192,7 +192,7 @@ private:
  * Scales the ratio vectors of `cut` (made 1 where it has none) so that its
  * SH visibility, seen by a receiver at p (normal n, unit) that owns none of
  * its spheres, blocks as much of the cosine-weighted hemisphere as the
- * union of `leaves` does (2048 spherical-Fibonacci directions). Heavily
+ * union of `leaves` does (`directions` spherical-Fibonacci directions). Heavily
  * overlapping spheres near the receiver (an arch's tube over the ground)
  * are each still too small for the SH, and the exp of summed logs blocks
  * far more than their union: under the arch's middle 60% of the
@@ -201,7 +201,7 @@ private:
  * blocks no more than the union or the kernel does not apply ratios.
  */
 PROXYGISHADING_EXPORT float ScaleCutToUnion(Blockers& cut, const Blockers& leaves,
-  const SoftShadows& kernel, const float p[3], const float n[3]);
+  const SoftShadows& kernel, const float p[3], const float n[3], int directions = 2048);
 
 } // namespace proxygi
 
