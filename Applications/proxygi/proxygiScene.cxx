@@ -481,13 +481,27 @@ std::vector<vtkSmartPointer<vtkPolyData>> ShadeOnCPU(
   gi->SetSettings(settings);
   gi->SetOccluder(occluder);
   std::vector<vtkSmartPointer<vtkPolyData>> shaded = ShadeEach(gi, receivers);
-  // The first object's plan.
-  auto* plan = shaded.empty()
-    ? nullptr
-    : vtkStringArray::SafeDownCast(shaded.front()->GetFieldData()->GetAbstractArray("Plan"));
-  for (vtkIdType i = 0; plan && i < plan->GetNumberOfValues(); ++i)
+  // The first object's plan whole, then each other object's lines that
+  // differ from it under its name (a ground's clusters scaled to the union,
+  // its own stages).
+  std::vector<std::string> first;
+  for (std::size_t k = 0; k < shaded.size(); ++k)
   {
-    std::printf("plan: %s\n", plan->GetValue(i).c_str());
+    auto* plan = vtkStringArray::SafeDownCast(shaded[k]->GetFieldData()->GetAbstractArray("Plan"));
+    for (vtkIdType i = 0; plan && i < plan->GetNumberOfValues(); ++i)
+    {
+      const std::string& line = plan->GetValue(i);
+      if (k == 0)
+      {
+        first.push_back(line);
+        std::printf("plan: %s\n", line.c_str());
+      }
+      else if (std::find(first.begin(), first.end(), line) == first.end())
+      {
+        std::printf("plan (%s): %s\n",
+          k < scene.Objects.size() ? scene.Objects[k].Name.c_str() : "object", line.c_str());
+      }
+    }
   }
   return shaded;
 }
