@@ -320,20 +320,8 @@ int main(int argc, char* argv[])
   std::vector<Measurement> trainRows, heldRows;
   std::string error;
   // Each of --train and --held-out: CSV files, comma separated.
-  const auto readAll = [&](const std::string& files, std::vector<Measurement>& rows)
-  {
-    for (const std::string& file : Split(files))
-    {
-      std::vector<Measurement> some;
-      if (!ReadMeasurements(Read(file), some, error))
-      {
-        return false;
-      }
-      rows.insert(rows.end(), some.begin(), some.end());
-    }
-    return true;
-  };
-  if (!readAll(train, trainRows) || !readAll(heldOut, heldRows) || trainRows.empty())
+  if (!ReadMeasurementFiles(Split(train), trainRows, error) ||
+    !ReadMeasurementFiles(Split(heldOut), heldRows, error) || trainRows.empty())
   {
     std::fprintf(stderr, "ProxyGIBudgetReport: %s\n",
       error.empty() ? "no measurements (--train, --held-out)" : error.c_str());
@@ -569,15 +557,10 @@ int main(int argc, char* argv[])
   // The knobs the grid keeps at their defaults, measured around it.
   std::vector<Measurement> variations, defaults = trainRows;
   defaults.insert(defaults.end(), heldRows.begin(), heldRows.end());
-  for (const std::string& file : Split(variationFiles))
+  if (!ReadMeasurementFiles(Split(variationFiles), variations, error))
   {
-    std::vector<Measurement> some;
-    if (!ReadMeasurements(Read(file), some, error))
-    {
-      std::fprintf(stderr, "ProxyGIBudgetReport: %s: %s\n", file.c_str(), error.c_str());
-      return 1;
-    }
-    variations.insert(variations.end(), some.begin(), some.end());
+    std::fprintf(stderr, "ProxyGIBudgetReport: %s\n", error.c_str());
+    return 1;
   }
   const std::string table = VariationTable(variations, defaults);
   if (!table.empty())

@@ -182,19 +182,10 @@ int RunCalibrate(const Args& args)
   {
     std::vector<std::string> files;
     SplitList(fitFrom, files);
-    for (const std::string& file : files)
+    if (!budget::ReadMeasurementFiles(files, rows, error))
     {
-      std::ifstream in(file);
-      std::stringstream text;
-      text << in.rdbuf();
-      std::vector<budget::Measurement> some;
-      if (!in || !budget::ReadMeasurements(text.str(), some, error))
-      {
-        vtkLogF(
-          ERROR, "proxygi calibrate: %s: %s", file.c_str(), in ? error.c_str() : "cannot read");
-        return 1;
-      }
-      rows.insert(rows.end(), some.begin(), some.end());
+      vtkLogF(ERROR, "proxygi calibrate: %s", error.c_str());
+      return 1;
     }
     if (!gridNames.empty())
     {

@@ -381,6 +381,25 @@ bool NamedGrids(const std::vector<std::string>& names, std::vector<Knobs>& grid,
   return !grid.empty();
 }
 
+bool ReadMeasurementFiles(
+  const std::vector<std::string>& paths, std::vector<Measurement>& rows, std::string& error)
+{
+  for (const std::string& path : paths)
+  {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::vector<Measurement> some;
+    if (!in || !ReadMeasurements(text.str(), some, error))
+    {
+      error = path + ": " + (in ? error : std::string("cannot read"));
+      return false;
+    }
+    rows.insert(rows.end(), some.begin(), some.end());
+  }
+  return true;
+}
+
 std::vector<Measurement> InGrid(
   const std::vector<Measurement>& rows, const std::vector<Knobs>& grid)
 {

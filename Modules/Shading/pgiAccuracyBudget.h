@@ -175,6 +175,10 @@ struct PROXYGISHADING_EXPORT Measurement
 PROXYGISHADING_EXPORT std::string WriteMeasurements(const std::vector<Measurement>& rows);
 PROXYGISHADING_EXPORT bool ReadMeasurements(
   const std::string& text, std::vector<Measurement>& rows, std::string& error);
+/// The measurements of CSV files, appended in order. False, with the
+/// file's name, for one that cannot be read or parsed.
+PROXYGISHADING_EXPORT bool ReadMeasurementFiles(
+  const std::vector<std::string>& paths, std::vector<Measurement>& rows, std::string& error);
 /// `rows` without the filter's runs of candidates not in `grid` (the
 /// mapper's are kept).
 PROXYGISHADING_EXPORT std::vector<Measurement> InGrid(
