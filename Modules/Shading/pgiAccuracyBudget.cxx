@@ -392,7 +392,11 @@ bool ReadMeasurementFiles(
     std::vector<Measurement> some;
     if (!in || !ReadMeasurements(text.str(), some, error))
     {
-      error = path + ": " + (in ? error : std::string("cannot read"));
+      error.insert(0, path + ": ");
+      if (!in)
+      {
+        error = path + ": cannot read";
+      }
       return false;
     }
     rows.insert(rows.end(), some.begin(), some.end());
@@ -695,16 +699,6 @@ bool Model::Fit(const std::vector<Measurement>& rows, std::string& error)
     sum += e * e;
   }
   this->ErrorSpread = std::sqrt(sum / std::max<std::size_t>(1, used.size()));
-  // The check's estimate has its own error (the cheap run's noise is known
-  // to a few percent, and it is most of the sum at a few samples).
-  std::vector<double> underestimate;
-  for (const Measurement& m : rows)
-  {
-    if (m.CheckError > 0.0 && m.Error > 0.0 && Finite(m.CheckError))
-    {
-      underestimate.push_back(m.Error / m.CheckError);
-    }
-  }
   // The check's transfer: each scene's mean log residual per family, and
   // the slope of one family's on another's over the scenes with both.
   std::map<std::string, std::map<int, std::pair<double, int>>> residuals;
@@ -735,6 +729,16 @@ bool Model::Fit(const std::vector<Measurement>& rows, std::string& error)
     }
   }
   this->CheckTransfer = pairs >= 6 && xx > 0.0 ? std::clamp(xy / xx, 0.0, 1.0) : 1.0;
+  // The check's estimate has its own error (the cheap run's noise is known
+  // to a few percent, and it is most of the sum at a few samples).
+  std::vector<double> underestimate;
+  for (const Measurement& m : rows)
+  {
+    if (m.CheckError > 0.0 && m.Error > 0.0 && Finite(m.CheckError))
+    {
+      underestimate.push_back(m.Error / m.CheckError);
+    }
+  }
   this->CheckMargin = 1.0;
   if (underestimate.size() >= 8)
   {
