@@ -2,13 +2,13 @@
 
 #include "pgiSHBasis.h"
 #include "pgiSHRotation.h"
+#include "vtkPGIGIBake.h"
 
 #include "vtkDataArray.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkSmartPointer.h"
 
 #include "vtk_eigen.h"
@@ -164,21 +164,12 @@ double GlossyProjection::ConstantCoefficient()
 
 bool ReceiverNormals(vtkPolyData* receivers, std::vector<double>& normals, std::string& error)
 {
-  vtkSmartPointer<vtkDataArray> array = receivers->GetPointData()->GetNormals();
+  // Computed as the GI filter computes them where missing.
+  vtkSmartPointer<vtkDataArray> array = proxygi::ReceiverNormals(receivers);
   if (!array)
   {
-    vtkNew<vtkPolyDataNormals> filter;
-    filter->SetInputData(receivers);
-    filter->SplittingOff();
-    filter->ComputePointNormalsOn();
-    filter->Update();
-    if (filter->GetOutput()->GetNumberOfPoints() != receivers->GetNumberOfPoints() ||
-      !filter->GetOutput()->GetPointData()->GetNormals())
-    {
-      error = "could not compute receiver normals (no polygons?); give point normals";
-      return false;
-    }
-    array = filter->GetOutput()->GetPointData()->GetNormals();
+    error = "could not compute receiver normals (no polygons?); give point normals";
+    return false;
   }
   const vtkIdType n = receivers->GetNumberOfPoints();
   normals.resize(3 * static_cast<std::size_t>(n));

@@ -1,5 +1,6 @@
 #include "pgiSceneSetup.h"
 
+#include "vtkPGIGIBake.h"
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 #include "vtkPGILighting.h"
@@ -170,7 +171,7 @@ std::vector<vtkSmartPointer<vtkPolyData>> SceneReceivers(const LoadedScene& load
     normals->SplittingOff();
     normals->ConsistencyOn();
     normals->AutoOrientNormalsOff();
-    normals->Update();
+    proxygi::UpdateNormals(normals);
     auto copy = vtkSmartPointer<vtkPolyData>::New();
     copy->DeepCopy(normals->GetOutput());
     // The object each receiver is on, as the proxies' ObjectId names it: a

@@ -161,7 +161,11 @@ void EnvironmentShading::Shade(const float n[3], const float* g, float rgb[3]) c
     float sum = 0.0f;
     for (int k = 0; k < 4; ++k)
     {
-      sum += w[k] * FourWayDot(n2, &this->LHTable[(corners[k] * 3 + c) * n2], g);
+      // A normal on a grid line (a ground's +z) needs fewer corners.
+      if (w[k] != 0.0f)
+      {
+        sum += w[k] * FourWayDot(n2, &this->LHTable[(corners[k] * 3 + c) * n2], g);
+      }
     }
     rgb[c] = std::max(0.0f, sum);
   }

@@ -132,21 +132,33 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
     {
       continue;
     }
+    float rcs[3][sh::MaxCoefficients];
     for (int c = 0; c < 3; ++c)
     {
-      float rc[sh::MaxCoefficients];
       for (int i = 0; i < n2; ++i)
       {
-        rc[i] = albedo[c] * lights.Response[c * n2 + i];
+        rcs[c][i] = albedo[c] * lights.Response[c * n2 + i];
       }
+    }
+    if (op == IndirectOperator::Averaged)
+    {
+      // The three channels share the look-up and the basis.
+      const float* channels[3] = { rcs[0], rcs[1], rcs[2] };
+      float kappa[3];
+      indirect.AveragedRadiances(b.Theta, b.Dir, 3, channels, kappa);
+      for (int c = 0; c < 3; ++c)
+      {
+        sum[c] += capWeight * kappa[c];
+      }
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      const float* rc = rcs[c];
       if (op == IndirectOperator::PointSampled)
       {
         // The surface point facing the receiver has outward normal -Dir.
         sum[c] += capWeight * sh::Reconstruct(order, rc, -b.Dir[0], -b.Dir[1], -b.Dir[2]);
-      }
-      else if (op == IndirectOperator::Averaged)
-      {
-        sum[c] += capWeight * indirect.AveragedRadiance(b.Theta, b.Dir, rc);
       }
       else
       {

@@ -22,6 +22,47 @@ float Dot(const float a[3], const float b[3])
 {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
+
+// Directions per block of the products below.
+constexpr int DotLanes = 16;
+
+int PaddedDirections(int count)
+{
+  return (count + DotLanes - 1) / DotLanes * DotLanes;
+}
+
+// v[k] = sum_i g[i] basis[i * stride + k] for k < count (a multiple of
+// DotLanes), each sum in the order of i as a lone dot product takes it (the
+// same floats), the directions side by side: vectorised, no chain of
+// dependent additions.
+void DotEach(int coefficients, const float* g, const float* basis, int stride, int count, float* v)
+{
+  for (int k0 = 0; k0 < count; k0 += DotLanes)
+  {
+    float lanes[DotLanes] = {};
+    for (int i = 0; i < coefficients; ++i)
+    {
+      const float gi = g[i];
+      const float* row = basis + static_cast<std::size_t>(i) * stride + k0;
+      for (int k = 0; k < DotLanes; ++k)
+      {
+        lanes[k] += gi * row[k];
+      }
+    }
+    std::copy_n(lanes, DotLanes, v + k0);
+  }
+}
+
+// A direction's basis, stored coefficient-major.
+void StoreBasis(int order, const float w[3], float* basis, int stride, int k)
+{
+  float y[sh::MaxCoefficients];
+  sh::EvaluateBasis(order, w[0], w[1], w[2], y);
+  for (int i = 0; i < order * order; ++i)
+  {
+    basis[static_cast<std::size_t>(i) * stride + k] = y[i];
+  }
+}
 }
 
 void PlaneLightMap::Layout(const Blockers& blockers, int plane,
@@ -40,12 +81,13 @@ void PlaneLightMap::Layout(const Blockers& blockers, int plane,
 
   // The look-up directions: uniform in solid angle over the half-space below
   // the plane (a spherical Fibonacci spiral), fixed in the plane's frame.
-  const int count = std::max(0, directions);
+  const int count = std::max(0, std::min(MaxDirections, directions));
   this->Directions.resize(3 * static_cast<std::size_t>(count));
   this->StepU.resize(count);
   this->StepV.resize(count);
   this->Coefficients = order * order;
-  this->Basis.resize(static_cast<std::size_t>(this->Coefficients) * count);
+  this->DirectionStride = PaddedDirections(count);
+  this->Basis.assign(static_cast<std::size_t>(this->Coefficients) * this->DirectionStride, 0.0f);
   const double golden = (1.0 + std::sqrt(5.0)) / 2.0, pi = 3.14159265358979323846;
   for (int k = 0; k < count; ++k)
   {
@@ -60,8 +102,7 @@ void PlaneLightMap::Layout(const Blockers& blockers, int plane,
     this->StepV[k] = static_cast<float>(b / down);
     if (order > 0)
     {
-      const float* w = &this->Directions[3 * k];
-      sh::EvaluateBasis(order, w[0], w[1], w[2], &this->Basis[this->Coefficients * k]);
+      StoreBasis(order, &this->Directions[3 * k], this->Basis.data(), this->DirectionStride, k);
     }
   }
 
@@ -282,8 +323,9 @@ void PlaneLightMap::SetSky(const EnvironmentMap& map)
     {
       double w[3];
       world(std::cos(phi), std::sin(phi), (r + 0.5) / SkyRows, w);
-      sh::EvaluateBasis(order, static_cast<float>(w[0]), static_cast<float>(w[1]),
-        static_cast<float>(w[2]), &this->SkyBasis[this->Coefficients * (b * SkyRows + r)]);
+      const float wf[3] = { static_cast<float>(w[0]), static_cast<float>(w[1]),
+        static_cast<float>(w[2]) };
+      StoreBasis(order, wf, this->SkyBasis.data(), SkyBins * SkyRows, b * SkyRows + r);
     }
   }
   this->SkyBuiltFor = key;
@@ -315,6 +357,11 @@ void PlaneLightMap::SkyPastEdges(
       out[k] = lo[k] + t * (lo[9 + k] - lo[k]);
     }
   };
+  // V at the bins' rows, a block of DotLanes rows at a time as bins need them.
+  static_assert(SkyBins * SkyRows % DotLanes == 0, "the sky's rows fill the products' blocks");
+  constexpr int SkyStride = SkyBins * SkyRows;
+  float skyV[SkyStride];
+  bool skyDone[SkyStride / DotLanes] = {};
   float sum[3] = { 0, 0, 0 };
   for (int b = 0; b < SkyBins; ++b)
   {
@@ -393,13 +440,14 @@ void PlaneLightMap::SkyPastEdges(
         float rows[2];
         for (int q = 0; q < 2; ++q)
         {
-          const float* y = &this->SkyBasis[this->Coefficients * (b * SkyRows + k + q)];
-          float dot = 0.0f;
-          for (int i = 0; i < this->Coefficients; ++i)
+          const int at = b * SkyRows + k + q, block = at / DotLanes;
+          if (!skyDone[block])
           {
-            dot += g[i] * y[i];
+            DotEach(this->Coefficients, g, this->SkyBasis.data() + block * DotLanes, SkyStride,
+              DotLanes, skyV + block * DotLanes);
+            skyDone[block] = true;
           }
-          rows[q] = std::min(1.0f, std::max(0.0f, dot));
+          rows[q] = std::min(1.0f, std::max(0.0f, skyV[at]));
         }
         v = rows[0] + t * (rows[1] - rows[0]);
       }
@@ -465,9 +513,25 @@ bool PlaneLightMap::Scale(
   const bool empty = this->S.empty();
   float sum[3] = { 0, 0, 0 }, weights = 0.0f;
   const int count = static_cast<int>(this->StepU.size());
+  // V at the directions the receiver faces (Layout allows at most
+  // MaxDirections), a block of DotLanes directions at a time.
+  float cosines[MaxDirections], v[MaxDirections];
   for (int k = 0; k < count; ++k)
   {
-    const float c = Dot(n, &this->Directions[3 * k]);
+    cosines[k] = Dot(n, &this->Directions[3 * k]);
+  }
+  for (int k0 = 0; g && k0 < count; k0 += DotLanes)
+  {
+    const int end = std::min(count, k0 + DotLanes);
+    if (std::any_of(cosines + k0, cosines + end, [](float c) { return c > 0.0f; }))
+    {
+      DotEach(
+        this->Coefficients, g, this->Basis.data() + k0, this->DirectionStride, DotLanes, v + k0);
+    }
+  }
+  for (int k = 0; k < count; ++k)
+  {
+    const float c = cosines[k];
     if (!(c > 0.0f))
     {
       continue;
@@ -476,13 +540,7 @@ bool PlaneLightMap::Scale(
     float seen = c;
     if (g)
     {
-      const float* yk = &this->Basis[this->Coefficients * k];
-      float v = 0.0f;
-      for (int i = 0; i < this->Coefficients; ++i)
-      {
-        v += g[i] * yk[i];
-      }
-      seen *= std::min(1.0f, std::max(0.0f, v));
+      seen *= std::min(1.0f, std::max(0.0f, v[k]));
     }
     const float su = this->StepU[k], sv = this->StepV[k];
     if (this->Bounded && !InExtent(this->Dual1, this->Dual2, x + h * su, y + h * sv))

@@ -91,6 +91,8 @@ public:
    */
   void SetSky(const EnvironmentMap& map);
   static constexpr int SkyBins = 32, SkyHeights = 64;
+  /// Layout's most look-up directions (vtkPGIGISettings::PlaneBounceDirections' range).
+  static constexpr int MaxDirections = 1024;
   /// Grid points along a tile's side: each tile is shaded with the blockers
   /// scaled at its centre to block what their union blocks.
   static constexpr int TileSide = 8;
@@ -162,9 +164,14 @@ private:
   // height, (w.U, w.V) / (-w.m).
   std::vector<float> Directions, StepU, StepV;
   int Coefficients = 0;
-  std::vector<float> Basis; // Coefficients per direction
-  // SetSky's table, what it was built from, and the basis (Coefficients)
-  // at each bin's SkyRows directions, in bin-major order.
+  // The basis at the directions, coefficient-major: coefficient i of
+  // direction k at i * DirectionStride + k (the stride a multiple of
+  // DotLanes, zeros past the last direction), so V at every direction is
+  // one product with the directions side by side.
+  std::vector<float> Basis;
+  int DirectionStride = 0;
+  // SetSky's table, what it was built from, and the basis at each bin's
+  // SkyRows directions (b * SkyRows + r), coefficient-major as Basis.
   std::vector<float> SkyTable, SkyBasis;
   // Per bin: its centre's (cos, sin) in (U, V) and its steps in the
   // extent's coordinates (dual 1, dual 2) per unit of distance.

@@ -13,6 +13,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
+#include "vtkSMPTools.h"
 
 #include <cmath>
 #include <sstream>
@@ -33,12 +34,18 @@ vtkSmartPointer<vtkDataArray> ReceiverNormals(vtkPolyData* receivers)
   vtkNew<vtkPolyDataNormals> computer;
   computer->SetInputData(receivers);
   computer->SplittingOff();
-  computer->Update();
+  UpdateNormals(computer);
   if (computer->GetOutput()->GetNumberOfPoints() != receivers->GetNumberOfPoints())
   {
     return nullptr;
   }
   return computer->GetOutput()->GetPointData()->GetNormals();
+}
+
+void UpdateNormals(vtkPolyDataNormals* filter)
+{
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ 1, vtkSMPTools::GetBackend(), false }, [filter]() { filter->Update(); });
 }
 } // namespace proxygi
 

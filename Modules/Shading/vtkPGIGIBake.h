@@ -52,6 +52,7 @@
 class vtkDataArray;
 class vtkPGILighting;
 class vtkPolyData;
+class vtkPolyDataNormals;
 
 namespace proxygi
 {
@@ -121,6 +122,11 @@ struct PROXYGISHADING_EXPORT BakedScene
 /// Point normals of receivers (computed unsplit when missing, as every
 /// consumer does); null when they cannot be computed.
 PROXYGISHADING_EXPORT vtkSmartPointer<vtkDataArray> ReceiverNormals(vtkPolyData* receivers);
+
+/// Updates a normals filter on one thread: VTK's threaded cell links sum a
+/// point's polygons in an order that varies from run to run, and the
+/// normals (so every result) with it in the last bits.
+PROXYGISHADING_EXPORT void UpdateNormals(vtkPolyDataNormals* filter);
 } // namespace proxygi
 
 class PROXYGISHADING_EXPORT vtkPGIGIBake : public vtkObject

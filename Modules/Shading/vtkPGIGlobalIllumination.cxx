@@ -114,9 +114,40 @@ void CutSphericalLights(const proxygi::SphericalLights& nodes,
 // A receiver's unit normal; a zero, NaN or Inf one (vtkPolyDataNormals
 // gives NaN on degenerate triangles) faces +z rather than poisoning the
 // shading: (Inf, 0, 0) normalizes to (NaN, 0, 0) in vtkMath::Normalize.
-void UnitNormal(vtkDataArray* normals, vtkIdType i, double n[3])
+// 3-component tuples as doubles, read straight from a float array (the
+// usual points and normals): no virtual call per receiver.
+class Tuples3
 {
-  normals->GetTuple(i, n);
+public:
+  explicit Tuples3(vtkDataArray* array)
+    : Array(array)
+  {
+    auto* floats = vtkFloatArray::SafeDownCast(array);
+    this->Floats = floats && floats->GetNumberOfComponents() == 3 ? floats->GetPointer(0) : nullptr;
+  }
+  void Get(vtkIdType i, double x[3]) const
+  {
+    if (this->Floats)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        x[c] = this->Floats[3 * i + c];
+      }
+    }
+    else
+    {
+      this->Array->GetTuple(i, x);
+    }
+  }
+
+private:
+  vtkDataArray* Array;
+  const float* Floats;
+};
+
+void UnitNormal(const Tuples3& normals, vtkIdType i, double n[3])
+{
+  normals.Get(i, n);
   const double length = vtkMath::Normalize(n);
   if (!(length > 0.0) || !std::isfinite(n[0] + n[1] + n[2]))
   {
@@ -738,10 +769,11 @@ std::string vtkPGIGlobalIllumination::CheckReceivers(vtkPolyData* receivers)
   {
     return "No receivers: input 0 is empty.";
   }
+  const Tuples3 points(receivers->GetPoints()->GetData());
   for (vtkIdType i = 0; i < receivers->GetNumberOfPoints(); ++i)
   {
     double p[3];
-    receivers->GetPoint(i, p);
+    points.Get(i, p);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
     {
       return "Receiver " + std::to_string(i) + " has a NaN or Inf coordinate.";
@@ -879,12 +911,13 @@ ClusterFrames GridClusters(vtkMultiProcessController* controller, vtkPolyData* r
   double size = totals[1] > 0.0 ? std::sqrt(totals[1] * perCluster / totals[0])
                                 : diagonal * std::cbrt(perCluster / totals[0]);
   size = diagonal * std::exp2(std::round(std::log2(std::min(1.0, size / diagonal))));
+  const Tuples3 normalTuples(normals);
   std::map<std::array<long long, 4>, int> cellOf;
   f.Of.resize(static_cast<std::size_t>(n));
   for (vtkIdType i = 0; i < n; ++i)
   {
     double nd[3];
-    UnitNormal(normals, i, nd);
+    UnitNormal(normalTuples, i, nd);
     int axis = 0;
     for (int c = 1; c < 3; ++c)
     {
@@ -951,6 +984,7 @@ ClusterFrames LloydFrames(
       central[k] = i;
     }
   }
+  const Tuples3 normalTuples(normals);
   f.At.resize(clusters);
   f.Facing.resize(clusters);
   for (int k = 0; k < clusters; ++k)
@@ -961,7 +995,7 @@ ClusterFrames LloydFrames(
       continue;
     }
     std::copy_n(&points[3 * central[k]], 3, f.At[k].data());
-    UnitNormal(normals, central[k], f.Facing[k].data());
+    UnitNormal(normalTuples, central[k], f.Facing[k].data());
   }
   f.How = "Lloyd clusters of this piece";
   return f;
@@ -1279,6 +1313,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
   std::atomic<long long> secondPassNs(0), visibilityNs(0);
   // Progress and abort between blocks; a block of at least 4096 receivers
   // keeps the fork-join of each block small beside its work.
+  const Tuples3 pointTuples(receivers->GetPoints()->GetData()), normalTuples(normals);
   const vtkIdType blocks = std::max<vtkIdType>(1, std::min<vtkIdType>(50, n / 4096));
   for (vtkIdType block = 0; block < blocks && !this->GetAbortExecute(); ++block)
   {
@@ -1320,8 +1355,8 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
         for (vtkIdType j = 0; j < count; ++j)
         {
           double pd[3], nd[3];
-          receivers->GetPoint(first + j, pd);
-          UnitNormal(normals, first + j, nd);
+          pointTuples.Get(first + j, pd);
+          UnitNormal(normalTuples, first + j, nd);
           for (int c = 0; c < 3; ++c)
           {
             points[3 * j + c] = static_cast<float>(pd[c]);
@@ -1711,6 +1746,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
     const std::vector<unsigned char> edges = BrightLightEdges(receivers, brightSeen);
     std::atomic<vtkIdType> litAtHits(0);
     std::atomic<long long> hitNs(0);
+    const Tuples3 normalTuples(normals);
     vtkSMPTools::For(0, n,
       [&](vtkIdType first, vtkIdType last)
       {
@@ -1754,7 +1790,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
               const vtkIdType e = hitEntries[k], t = targets[e];
               HitPointNow(self, e, &hitPoints[3 * k]);
               double nd[3];
-              UnitNormal(normals, t, nd);
+              UnitNormal(normalTuples, t, nd);
               for (int c = 0; c < 3; ++c)
               {
                 hitNormals[3 * k + c] = static_cast<float>(nd[c]);

@@ -54,7 +54,8 @@ void HybridSchedule(int order, double norm, const ExpOptions& options, int& step
     options.HybridMaxNorm > 0.0 ? options.HybridMaxNorm : DefaultHybridMaxNorm(order);
   steps = 0;
   w = 0.0;
-  if (norm > 0.0)
+  // log2 of at most 0.5 is at most -1: most receivers skip the log.
+  if (norm > 0.0 && norm / limit > 0.5)
   {
     const double u = std::log2(norm / limit);
     if (u > -1.0)

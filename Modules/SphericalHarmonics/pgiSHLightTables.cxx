@@ -585,20 +585,33 @@ const IndirectTables& IndirectTables::Get(int order)
 template <typename T>
 T IndirectTables::AveragedRadiance(T theta, const T d[3], const T* radiance) const
 {
+  T kappa;
+  this->AveragedRadiances(theta, d, 1, &radiance, &kappa);
+  return kappa;
+}
+
+template <typename T>
+void IndirectTables::AveragedRadiances(
+  T theta, const T d[3], int count, const T* const* radiances, T* kappas) const
+{
   T zh[MaxOrder], basis[MaxCoefficients];
   this->AveragedIndirect(theta, zh);
   EvaluateBasis(this->Order, d[0], d[1], d[2], basis);
-  T kappa = T(0);
-  for (int l = 0; l < this->Order; ++l)
+  for (int c = 0; c < count; ++c)
   {
-    T band = T(0);
-    for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+    const T* radiance = radiances[c];
+    T kappa = T(0);
+    for (int l = 0; l < this->Order; ++l)
     {
-      band += basis[i] * radiance[i];
+      T band = T(0);
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+      {
+        band += basis[i] * radiance[i];
+      }
+      kappa += zh[l] * band;
     }
-    kappa += zh[l] * band;
+    kappas[c] = kappa;
   }
-  return kappa;
 }
 
 template <typename T>
@@ -844,6 +857,8 @@ void AnalyticLightTables::Evaluate(const T normal[3], const T d[3], T theta, T* 
   template PROXYGISPHERICALHARMONICS_EXPORT void EvaluateZonalLobe<T>(int, T, const T*, T*);       \
   template PROXYGISPHERICALHARMONICS_EXPORT T IndirectTables::AveragedRadiance<T>(                 \
     T, const T*, const T*) const;                                                                  \
+  template PROXYGISPHERICALHARMONICS_EXPORT void IndirectTables::AveragedRadiances<T>(             \
+    T, const T*, int, const T* const*, T*) const;                                                  \
   template PROXYGISPHERICALHARMONICS_EXPORT T IndirectTables::SphericalLightRadiance<T>(           \
     T, const T*, const T*) const;                                                                  \
   template PROXYGISPHERICALHARMONICS_EXPORT void IndirectTables::AveragedIndirectFit<T>(T, T*)     \

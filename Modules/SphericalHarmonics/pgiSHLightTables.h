@@ -191,6 +191,12 @@ public:
   template <typename T>
   T AveragedRadiance(T theta, const T d[3], const T* radiance) const;
 
+  /// AveragedRadiance for several radiance SH about one proxy (the colour
+  /// channels), sharing the table look-up and the basis: the same values.
+  template <typename T>
+  void AveragedRadiances(
+    T theta, const T d[3], int count, const T* const* radiances, T* kappas) const;
+
   /// Guerrero's average radiance w_theta . R for a light in direction d (receiver -> centre).
   template <typename T>
   T SphericalLightRadiance(T theta, const T d[3], const T* radiance) const;

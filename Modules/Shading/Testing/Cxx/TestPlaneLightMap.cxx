@@ -28,8 +28,10 @@
 #include "vtkSphereSource.h"
 #include "vtkTubeFilter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <vector>
 
 using namespace proxygi;
@@ -165,6 +167,70 @@ int TestPlaneLightMap(int, char*[])
     PGI_NEAR(whole[0], open[0], 1e-5);
     PGI_NEAR(half[0], 0.5 * open[0], 1e-5);
     PGI_NEAR(none[0], 0.0, 0.0);
+  }
+  // Scale weighs each direction by V = g . y(w), the directions' products
+  // taken side by side: the same floats as one dot product per direction
+  // (random g, V below 0 and above 1 clamped; slanted normals, so some
+  // blocks of directions face away; 64 and 40 directions, the last block
+  // partly padding).
+  {
+    Blockers b;
+    const float origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
+    b.AddPlane(origin, up);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+    int checked = 0, equal = 0;
+    for (int directions : { 64, 40 })
+    {
+      PlaneLightMap map;
+      map.Layout(b, 0, {}, 64, directions, 4);
+      for (int trial = 0; trial < 50; ++trial)
+      {
+        float g[16], n[3] = { uniform(random), uniform(random), -std::abs(uniform(random)) };
+        for (float& x : g)
+        {
+          x = uniform(random);
+        }
+        g[0] = 2.0f;
+        const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (float& x : n)
+        {
+          x /= length;
+        }
+        const float p[3] = { 0, 0, 0.5f };
+        float scale[3];
+        if (!map.Scale(p, n, scale, g))
+        {
+          continue;
+        }
+        float weights = 0.0f, sum = 0.0f;
+        for (int k = 0; k < map.GetNumberOfDirections(); ++k)
+        {
+          const float* w = map.GetDirection(k);
+          const float c = n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
+          if (!(c > 0.0f))
+          {
+            continue;
+          }
+          weights += c;
+          float y[16], v = 0.0f;
+          sh::EvaluateBasis(4, w[0], w[1], w[2], y);
+          for (int i = 0; i < 16; ++i)
+          {
+            v += g[i] * y[i];
+          }
+          sum += c * std::min(1.0f, std::max(0.0f, v));
+        }
+        const float expected = std::min(1.0f, std::max(0.0f, sum / weights));
+        ++checked;
+        equal += scale[0] == expected && scale[1] == expected && scale[2] == expected ? 1 : 0;
+      }
+    }
+    std::printf("visibility-weighted scale, directions side by side: %d of %d receivers equal "
+                "to the per-direction dot products\n",
+      equal, checked);
+    PGI_CHECK(checked > 50);
+    PGI_CHECK(equal == checked);
   }
   // A square ground of half size a under a receiver looking down from h:
   // the plane's share is the square's form factor, 4 F(a/h, a/h), and the

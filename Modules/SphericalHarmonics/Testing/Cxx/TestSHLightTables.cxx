@@ -502,6 +502,23 @@ void TestAveragedAndWeight()
       float oneF[16];
       SetConstant(order, 1.0f, oneF);
       PGI_NEAR(tables.AveragedRadiance(float(theta), dirF, oneF), 1.0, 1e-5);
+      // Three channels at once (the look-up and basis shared): each the
+      // one-channel value to the bit, in its own slot.
+      float red[16], green[16], blue[16];
+      for (int i = 0; i < 16; ++i)
+      {
+        red[i] = 0.1f * static_cast<float>(i + 1);
+        green[i] = std::cos(static_cast<float>(i));
+        blue[i] = i % 3 == 0 ? -0.5f : 0.25f;
+      }
+      const float* channels[3] = { red, green, blue };
+      float kappas[3];
+      tables.AveragedRadiances(float(theta), dirF, 3, channels, kappas);
+      for (int c = 0; c < 3; ++c)
+      {
+        PGI_CHECK(kappas[c] == tables.AveragedRadiance(float(theta), dirF, channels[c]));
+      }
+      PGI_CHECK(kappas[0] != kappas[1] && kappas[1] != kappas[2]);
     }
   }
 }
