@@ -149,8 +149,8 @@ int vtkPGISelfVisibility::RequestData(
   // blocked rays hit (the hit triangle's nearest corner: a third of the
   // memory of all three), each with weight 2 cos(theta) / Samples
   // (irradiance / pi per unit exit radiance there), and where the largest
-  // of those hits lies: where a bright light's shadow edge runs past the
-  // corner its light does not hold there, and the GI filter lights that
+  // of those hits lies: near hits see shadows finer than the triangles,
+  // where the corner's light does not hold, and the GI filter lights that
   // point instead (barycentric weights over all three corners did not help
   // more, for 2.5 times the entries).
   std::vector<std::vector<BounceHit>> bounce(n);

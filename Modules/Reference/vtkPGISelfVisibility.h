@@ -33,7 +33,7 @@
  *    triangle's back, the unlit inside or a sheet's other side, blocks but
  *    brings no light), points hit twice merged; HitPoints[e] is where the
  *    largest of the hits merged into e lies (the GI filter lights that point
- *    itself where a bright light's shadow edge runs past the corner). About
+ *    by the bright lights itself where the entry is heavy: a near hit). About
  *    24 bytes per entry (the bunny at 256 rays: 34 entries per vertex);
  *  - SelfVisibilitySamples, SelfVisibilityBlockedFraction (rays blocked over
  *    rays traced).

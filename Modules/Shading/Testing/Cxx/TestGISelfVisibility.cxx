@@ -205,9 +205,10 @@ int TestGISelfVisibility(int, char*[])
   }
 
   // A low sun (the sunrise map: 59% of its power in a 0.6-degree disk) on
-  // the cow as the objects' scene places it: where the sun's shadow edge
-  // runs past a hit triangle's corners (between its tail and its rump, 8 mm
-  // apart) the hits are lit where they lie, by rays against the mesh. Turned
+  // the cow as the objects' scene places it: the heavy hits (near ones, as
+  // between its tail and its rump, 8 mm apart, where the sun's shadow is
+  // finer than the triangles) are lit where they lie, by rays against the
+  // mesh. Turned
   // about the vertical with the map (mesh and occluder alike), its own
   // bounce must stay: the hits turn with it.
   {
@@ -250,7 +251,7 @@ int TestGISelfVisibility(int, char*[])
     };
     auto still = shade(self->GetOutput(), 0.0);
     PGI_CHECK(pgitest::Says(still->GetPlan(), "bright lights: 1 taken out of the map"));
-    PGI_CHECK(pgitest::Says(still->GetPlan(), "past a bright light's shadow edge lit where"));
+    PGI_CHECK(pgitest::Says(still->GetPlan(), "lit by the bright lights where they lie"));
     vtkNew<vtkTransform> motion;
     motion->RotateZ(90.0);
     vtkSmartPointer<vtkPolyData> turned = Moved(self->GetOutput(), motion);
@@ -284,7 +285,7 @@ int TestGISelfVisibility(int, char*[])
                 "hits lit where they lie, %.2f%% from the corners; turned 90 degrees with the "
                 "map it changed by %.4f relative RMS (%.4f)\n",
       100 * atHits, 100 * atCorners, change, changeOther);
-    PGI_BELOW(atHits, 0.7 * atCorners);
+    PGI_BELOW(atHits, 0.5 * atCorners);
     PGI_BELOW(change, 0.2 * atHits);
   }
   return pgitest::Result();
