@@ -5,6 +5,7 @@
 #include "pgiParallel.h"
 #include "pgiReferenceScene.h"
 #include "pgiReferenceTracer.h"
+#include "vtkPGIGIBake.h"
 #include "vtkPGILighting.h"
 
 #include "vtkDoubleArray.h"
@@ -190,7 +191,7 @@ int vtkPGIReferenceIllumination::RequestData(
     normals->SetInputData(receivers);
     normals->SplittingOff();
     normals->ComputePointNormalsOn();
-    normals->Update();
+    proxygi::UpdateNormals(normals);
     withNormals = normals->GetOutput();
     if (withNormals->GetNumberOfPoints() != receivers->GetNumberOfPoints() ||
       !withNormals->GetPointData()->GetNormals())

@@ -4,6 +4,7 @@
 #include "pgiReferenceTracer.h"
 #include "pgiSHBasis.h"
 #include "pgiSHLog.h"
+#include "vtkPGIGIBake.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -17,7 +18,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
@@ -99,20 +99,12 @@ int vtkPGISelfVisibility::RequestData(
       return 0;
     }
   }
-  vtkSmartPointer<vtkDataArray> normals = input->GetPointData()->GetNormals();
+  // The input's, or computed as the GI filter computes them.
+  vtkSmartPointer<vtkDataArray> normals = proxygi::ReceiverNormals(input);
   if (!normals)
   {
-    vtkNew<vtkPolyDataNormals> computed;
-    computed->SetInputData(input);
-    computed->SplittingOff();
-    computed->ComputePointNormalsOn();
-    computed->Update();
-    if (computed->GetOutput()->GetNumberOfPoints() != n)
-    {
-      vtkErrorMacro(<< "Could not compute point normals; give them.");
-      return 0;
-    }
-    normals = computed->GetOutput()->GetPointData()->GetNormals();
+    vtkErrorMacro(<< "Could not compute point normals; give them.");
+    return 0;
   }
 
   proxygi::ReferenceTracer tracer;
