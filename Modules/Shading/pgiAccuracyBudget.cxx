@@ -390,13 +390,14 @@ bool ReadMeasurementFiles(
     std::stringstream text;
     text << in.rdbuf();
     std::vector<Measurement> some;
-    if (!in || !ReadMeasurements(text.str(), some, error))
+    if (!in)
+    {
+      error = path + ": cannot read";
+      return false;
+    }
+    if (!ReadMeasurements(text.str(), some, error))
     {
       error.insert(0, path + ": ");
-      if (!in)
-      {
-        error = path + ": cannot read";
-      }
       return false;
     }
     rows.insert(rows.end(), some.begin(), some.end());

@@ -111,9 +111,6 @@ void CutSphericalLights(const proxygi::SphericalLights& nodes,
     out.ReflectionRatio[k] = cutShare[k] > 1e-12f ? std::min(4.0f, sum / cutShare[k]) : 1.0f;
   }
 }
-// A receiver's unit normal; a zero, NaN or Inf one (vtkPolyDataNormals
-// gives NaN on degenerate triangles) faces +z rather than poisoning the
-// shading: (Inf, 0, 0) normalizes to (NaN, 0, 0) in vtkMath::Normalize.
 // 3-component tuples as doubles, read straight from a float array (the
 // usual points and normals): no virtual call per receiver.
 class Tuples3
@@ -145,6 +142,9 @@ private:
   const float* Floats;
 };
 
+// A receiver's unit normal; a zero, NaN or Inf one (vtkPolyDataNormals
+// gives NaN on degenerate triangles) faces +z rather than poisoning the
+// shading: (Inf, 0, 0) normalizes to (NaN, 0, 0) in vtkMath::Normalize.
 void UnitNormal(const Tuples3& normals, vtkIdType i, double n[3])
 {
   normals.Get(i, n);
@@ -1601,7 +1601,7 @@ void vtkPGIGlobalIllumination::ShadeReceivers(
           if (lightTables)
           {
             double pd[3];
-            receivers->GetPoint(i, pd);
+            pointTuples.Get(i, pd);
             proxygi::LocalLightsRadiance(
               b.Locals, *lightTables, pd, nf, shadowsOn ? g : unshadowed, lit);
           }
