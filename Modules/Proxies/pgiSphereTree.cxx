@@ -37,8 +37,50 @@ std::vector<int> LloydClusters(
 {
   const int k = static_cast<int>(centres.size());
   std::vector<int> assign(n, -1);
+  std::vector<int> byAxis(k);
+  std::vector<double> alongAxis(k);
   for (int iteration = 0; iteration < iterations && k > 0; ++iteration)
   {
+    // The centres in order along one axis: a point's search walks out from
+    // its own coordinate and stops where that coordinate alone is farther
+    // than the best so far. The nearest centre (the lowest index among
+    // equals) is the full scan's.
+    bool finite = true;
+    for (int c = 0; c < k; ++c)
+    {
+      finite = finite && std::isfinite(centres[c][0]) && std::isfinite(centres[c][1]) &&
+        std::isfinite(centres[c][2]);
+    }
+    // Along the axis the centres spread most.
+    int axis = 0;
+    double widest = -1.0;
+    for (int q = 0; finite && q < 3; ++q)
+    {
+      double lo = centres[0][q], hi = lo;
+      for (int c = 1; c < k; ++c)
+      {
+        lo = std::min(lo, centres[c][q]);
+        hi = std::max(hi, centres[c][q]);
+      }
+      if (hi - lo > widest)
+      {
+        widest = hi - lo;
+        axis = q;
+      }
+    }
+    std::iota(byAxis.begin(), byAxis.end(), 0);
+    if (finite)
+    {
+      std::sort(byAxis.begin(), byAxis.end(),
+        [&](int a, int b) {
+          return centres[a][axis] < centres[b][axis] ||
+            (centres[a][axis] == centres[b][axis] && a < b);
+        });
+    }
+    for (int c = 0; c < k; ++c)
+    {
+      alongAxis[c] = centres[byAxis[c]][axis];
+    }
     std::atomic<bool> changed(false);
     vtkSMPTools::For(0, n,
       [&](vtkIdType first, vtkIdType last)
@@ -46,15 +88,58 @@ std::vector<int> LloydClusters(
         bool mine = false;
         for (vtkIdType i = first; i < last; ++i)
         {
+          const double* point = points + 3 * i;
           int best = 0;
           double bestD = std::numeric_limits<double>::max();
-          for (int c = 0; c < k; ++c)
+          const auto consider = [&](int c)
           {
-            const double d = Distance2(points + 3 * i, centres[c].data());
-            if (d < bestD)
+            const double d = Distance2(point, centres[c].data());
+            if (d < bestD || (d == bestD && c < best))
             {
               bestD = d;
               best = c;
+            }
+          };
+          if (finite && std::isfinite(point[0]) && std::isfinite(point[1]) &&
+            std::isfinite(point[2]))
+          {
+            // The last assignment first: a tight bound from the start.
+            if (assign[i] >= 0)
+            {
+              consider(assign[i]);
+            }
+            const int start =
+              static_cast<int>(std::lower_bound(alongAxis.begin(), alongAxis.end(), point[axis]) -
+                alongAxis.begin());
+            for (int q = start; q < k; ++q)
+            {
+              const double dx = alongAxis[q] - point[axis];
+              if (dx * dx > bestD)
+              {
+                break;
+              }
+              consider(byAxis[q]);
+            }
+            for (int q = start - 1; q >= 0; --q)
+            {
+              const double dx = point[axis] - alongAxis[q];
+              if (dx * dx > bestD)
+              {
+                break;
+              }
+              consider(byAxis[q]);
+            }
+          }
+          else
+          {
+            for (int c = 0; c < k; ++c)
+            {
+              const double d = Distance2(point, centres[c].data());
+              if (d < bestD)
+              {
+                bestD = d;
+                best = c;
+              }
             }
           }
           mine = mine || assign[i] != best;

@@ -182,13 +182,37 @@ void EnvironmentShading::ShadeUnshadowed(const float n[3], float rgb[3]) const
   }
 }
 
+int LightAbovePlanesOrder(int order)
+{
+  return std::max(order, std::min(8, sh::MaxOrder));
+}
+
 void LightAbovePlanes(const EnvironmentMap& environment, int order, const float* planeNormals,
   int planes, double* red, double* green, double* blue, double* planeVisibility)
 {
-  const int high = std::max(order, std::min(8, sh::MaxOrder));
+  const int h2 = sh::NumCoefficients(LightAbovePlanesOrder(order));
+  std::vector<double> light(3 * h2);
+  environment.ProjectSH(LightAbovePlanesOrder(order), &light[0], &light[h2], &light[2 * h2]);
+  LightAbovePlanes(light, order, planeNormals, planes, red, green, blue, planeVisibility);
+}
+
+void LightAbovePlanes(const std::vector<double>& light, int order, const float* planeNormals,
+  int planes, double* red, double* green, double* blue, double* planeVisibility)
+{
+  const int high = LightAbovePlanesOrder(order);
   const int n2 = sh::NumCoefficients(order), h2 = sh::NumCoefficients(high);
-  std::vector<double> light(3 * h2), v(h2, 0.0), step(h2), product(h2), zh(high);
-  environment.ProjectSH(high, &light[0], &light[h2], &light[2 * h2]);
+  if (light.size() != 3 * static_cast<std::size_t>(h2))
+  {
+    for (double* out : { red, green, blue, planeVisibility })
+    {
+      if (out)
+      {
+        std::fill(out, out + n2, 0.0);
+      }
+    }
+    return; // not the projection this needs
+  }
+  std::vector<double> v(h2, 0.0), step(h2), product(h2), zh(high);
   // V = product of the steps (1 above each plane), at the high order.
   v[0] = std::sqrt(4.0 * sh::Pi);
   const sh::TripleProduct& tp = sh::TripleProduct::Get(high);

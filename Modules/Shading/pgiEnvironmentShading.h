@@ -71,6 +71,18 @@ PROXYGISHADING_EXPORT void LightAbovePlanes(const EnvironmentMap& environment, i
   const float* planeNormals, int planes, double* red, double* green, double* blue,
   double* planeVisibility = nullptr);
 
+/// The order LightAbovePlanes projects the map at (the product's): at
+/// least 8.
+PROXYGISHADING_EXPORT int LightAbovePlanesOrder(int order);
+
+/// LightAbovePlanes from the map's SH already projected at
+/// LightAbovePlanesOrder(order) (3 channels one after the other): a caller
+/// that needs the map's SH too projects it once (its first order^2
+/// coefficients are the order-n projection's).
+PROXYGISHADING_EXPORT void LightAbovePlanes(const std::vector<double>& projected, int order,
+  const float* planeNormals, int planes, double* red, double* green, double* blue,
+  double* planeVisibility);
+
 } // namespace proxygi
 
 #endif

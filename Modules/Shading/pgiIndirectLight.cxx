@@ -3,6 +3,7 @@
 #include "pgiEnvironmentShading.h"
 
 #include "pgiSHBasis.h"
+#include "pgiSHBatch.h"
 #include "pgiSHLightTables.h"
 #include "pgiSHTables.h"
 #include "pgiSHTripleProduct.h"
@@ -91,78 +92,131 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   const int order = lights.Order, n2 = sh::NumCoefficients(order);
   const sh::CapTables& caps = sh::CapTables::Get(order);
   const sh::IndirectTables& indirect = sh::IndirectTables::Get(order);
-  float h[sh::MaxCoefficients], zh[sh::MaxOrder], cap[sh::MaxCoefficients];
+  float h[sh::MaxCoefficients];
   sh::DiffuseTransfer(order, n[0], n[1], n[2], h);
   float sum[3] = { 0, 0, 0 }, planeSum[3] = { 0, 0, 0 };
   float solidAngles = 0.0f;
-  for (const SeenBlocker& b : seen)
+  // Per proxy: H(N) . (cap about b.Dir), the cap's irradiance weight shared
+  // by the cap-times-scalar operators, and the averaged operator's radiance
+  // per channel (before the albedo: the operator is linear). Batched over
+  // sh::BatchWidth proxies where the SIMD kernels run; else the scalar twin.
+  constexpr int W = sh::BatchWidth;
+  const bool averaged = op == IndirectOperator::Averaged;
+  const bool batched = sh::BatchKernelsEnabled();
+  alignas(64) float theta[W], dx[W], dy[W], dz[W], weights[W], kappas[3 * W];
+  const std::size_t count = seen.size();
+  for (std::size_t first = 0; first < count; first += W)
   {
-    // H(N) . (cap about b.Dir): the cap's irradiance weight, shared by the
-    // cap-times-scalar operators.
-    caps.CapVisibility(b.Theta, zh);
-    zh[0] = static_cast<float>(4.0 * sh::Pi) - zh[0]; // visibility -> cap (scaled ZH)
-    for (int l = 1; l < order; ++l)
+    const int lanes = static_cast<int>(std::min<std::size_t>(W, count - first));
+    if (batched)
     {
-      zh[l] = -zh[l];
+      for (int q = 0; q < W; ++q)
+      {
+        const SeenBlocker& b = seen[first + std::min(q, lanes - 1)];
+        theta[q] = q < lanes ? b.Theta : -1.0f;
+        dx[q] = b.Dir[0];
+        dy[q] = b.Dir[1];
+        dz[q] = b.Dir[2];
+      }
+      sh::BatchIndirectWeights(caps, indirect, order, theta, dx, dy, dz, h, averaged ? 3 : 0,
+        lights.Response.data(), weights, kappas);
     }
-    sh::RotateScaledZonal(order, zh, b.Dir[0], b.Dir[1], b.Dir[2], cap);
-    const float capWeight = sh::Dot(n2, h, cap);
-    if (b.Index >= 0 || !planesSeenPast)
+    else
     {
-      solidAngles += static_cast<float>(sh::CapSolidAngle(b.Theta));
+      for (int q = 0; q < lanes; ++q)
+      {
+        const SeenBlocker& b = seen[first + q];
+        float zh[sh::MaxOrder], basis[sh::MaxCoefficients];
+        caps.CapVisibility(b.Theta, zh);
+        zh[0] = static_cast<float>(4.0 * sh::Pi) - zh[0]; // visibility -> cap (scaled ZH)
+        for (int l = 1; l < order; ++l)
+        {
+          zh[l] = -zh[l];
+        }
+        // The basis at b.Dir serves the cap and the averaged radiance; the
+        // dot product band by band (short independent sums).
+        sh::EvaluateBasis(order, b.Dir[0], b.Dir[1], b.Dir[2], basis);
+        float capWeight = 0.0f;
+        for (int l = 0; l < order; ++l)
+        {
+          float band = 0.0f;
+          for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+          {
+            band += h[i] * basis[i];
+          }
+          capWeight += zh[l] * band;
+        }
+        weights[q] = capWeight;
+        if (averaged)
+        {
+          const float* channels[3] = { &lights.Response[0], &lights.Response[n2],
+            &lights.Response[2 * static_cast<std::size_t>(n2)] };
+          float kappa[3];
+          indirect.AveragedRadiancesFromBasis(b.Theta, basis, 3, channels, kappa);
+          for (int c = 0; c < 3; ++c)
+          {
+            kappas[c * W + q] = kappa[c];
+          }
+        }
+      }
     }
-    if (b.Index < 0)
+    for (int q = 0; q < lanes; ++q)
     {
-      // A plane: uniform radiance, its albedo times the response at its normal.
-      const int k = -1 - b.Index;
-      const float* pn = &blockers.PlaneNormal[3 * k];
-      float* to = planesSeenPast ? planeSum : sum;
+      const SeenBlocker& b = seen[first + q];
+      const float capWeight = weights[q];
+      if (b.Index >= 0 || !planesSeenPast)
+      {
+        solidAngles += static_cast<float>(sh::CapSolidAngle(b.Theta));
+      }
+      if (b.Index < 0)
+      {
+        // A plane: uniform radiance, its albedo times the response at its normal.
+        const int k = -1 - b.Index;
+        const float* pn = &blockers.PlaneNormal[3 * k];
+        float* to = planesSeenPast ? planeSum : sum;
+        for (int c = 0; c < 3; ++c)
+        {
+          const float r = blockers.PlaneAlbedo[3 * k + c] *
+            (planeScale ? planeScale[3 * k + c] : 1.0f) *
+            sh::Reconstruct(order, &lights.Response[c * n2], pn[0], pn[1], pn[2]);
+          to[c] += r * capWeight;
+        }
+        continue;
+      }
+      const float* albedo = &blockers.Albedo[3 * static_cast<std::size_t>(b.Index)];
+      if (planesOnly || (silence && blockers.Object[b.Index] == silentObject) ||
+        (albedo[0] <= 0.0f && albedo[1] <= 0.0f && albedo[2] <= 0.0f))
+      {
+        continue;
+      }
+      if (averaged)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          sum[c] += capWeight * albedo[c] * kappas[c * W + q];
+        }
+        continue;
+      }
+      float rcs[3][sh::MaxCoefficients];
       for (int c = 0; c < 3; ++c)
       {
-        const float r = blockers.PlaneAlbedo[3 * k + c] *
-          (planeScale ? planeScale[3 * k + c] : 1.0f) *
-          sh::Reconstruct(order, &lights.Response[c * n2], pn[0], pn[1], pn[2]);
-        to[c] += r * capWeight;
+        for (int i = 0; i < n2; ++i)
+        {
+          rcs[c][i] = albedo[c] * lights.Response[c * n2 + i];
+        }
       }
-      continue;
-    }
-    const float* albedo = &blockers.Albedo[3 * static_cast<std::size_t>(b.Index)];
-    if (planesOnly || (silence && blockers.Object[b.Index] == silentObject) ||
-      (albedo[0] <= 0.0f && albedo[1] <= 0.0f && albedo[2] <= 0.0f))
-    {
-      continue;
-    }
-    float rcs[3][sh::MaxCoefficients];
-    for (int c = 0; c < 3; ++c)
-    {
-      for (int i = 0; i < n2; ++i)
-      {
-        rcs[c][i] = albedo[c] * lights.Response[c * n2 + i];
-      }
-    }
-    if (op == IndirectOperator::Averaged)
-    {
-      // The three channels share the look-up and the basis.
-      const float* channels[3] = { rcs[0], rcs[1], rcs[2] };
-      float kappa[3];
-      indirect.AveragedRadiances(b.Theta, b.Dir, 3, channels, kappa);
       for (int c = 0; c < 3; ++c)
       {
-        sum[c] += capWeight * kappa[c];
-      }
-      continue;
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      const float* rc = rcs[c];
-      if (op == IndirectOperator::PointSampled)
-      {
-        // The surface point facing the receiver has outward normal -Dir.
-        sum[c] += capWeight * sh::Reconstruct(order, rc, -b.Dir[0], -b.Dir[1], -b.Dir[2]);
-      }
-      else
-      {
-        sum[c] += indirect.ExactIndirectExitRadiance(b.Theta, b.Dir, n, rc);
+        const float* rc = rcs[c];
+        if (op == IndirectOperator::PointSampled)
+        {
+          // The surface point facing the receiver has outward normal -Dir.
+          sum[c] += capWeight * sh::Reconstruct(order, rc, -b.Dir[0], -b.Dir[1], -b.Dir[2]);
+        }
+        else
+        {
+          sum[c] += indirect.ExactIndirectExitRadiance(b.Theta, b.Dir, n, rc);
+        }
       }
     }
   }

@@ -9,6 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 
 namespace proxygi
 {
@@ -477,6 +480,35 @@ bool SphereLog(const sh::CapTables& tables, const float p[3], const float n[3], 
   return true;
 }
 
+// Cosine-weighted spherical-Fibonacci directions about +z, per count: the
+// same for every receiver, so their square roots and trigonometry once.
+struct CosineFibonacci
+{
+  std::vector<double> Side, Up, Cos, Sin;
+
+  static const CosineFibonacci& Get(int samples)
+  {
+    static std::mutex lock;
+    static std::map<int, std::unique_ptr<CosineFibonacci>> made;
+    const std::lock_guard<std::mutex> guard(lock);
+    std::unique_ptr<CosineFibonacci>& entry = made[samples];
+    if (!entry)
+    {
+      entry.reset(new CosineFibonacci);
+      const double golden = sh::Pi * (3.0 - std::sqrt(5.0));
+      for (int k = 0; k < samples; ++k)
+      {
+        const double u = (k + 0.5) / samples;
+        entry->Side.push_back(std::sqrt(u));
+        entry->Up.push_back(std::sqrt(1.0 - u));
+        entry->Cos.push_back(std::cos(golden * k));
+        entry->Sin.push_back(std::sin(golden * k));
+      }
+    }
+    return *entry;
+  }
+};
+
 // Whether the ray from p along the unit w meets the sphere (x, y, z, r)
 // ahead of p.
 bool RayMeetsSphere(const float p[3], const double w[3], float x, float y, float z, float r)
@@ -517,13 +549,13 @@ double UnionSolidAngle(
   const double cosCap = std::sqrt(std::max(0.0, 1.0 - (h.R[node] / len) * (h.R[node] / len)));
   double t[3], b[3];
   FrameAbout(axis, t, b);
-  const double golden = sh::Pi * (3.0 - std::sqrt(5.0));
+  const CosineFibonacci& fibonacci = CosineFibonacci::Get(Samples);
   int hits = 0;
   for (int k = 0; k < Samples; ++k)
   {
     const double z = 1.0 - (1.0 - cosCap) * (k + 0.5) / Samples;
     const double side = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const double c = std::cos(golden * k), s = std::sin(golden * k);
+    const double c = fibonacci.Cos[k], s = fibonacci.Sin[k];
     double w[3];
     for (int q = 0; q < 3; ++q)
     {
@@ -542,6 +574,81 @@ double UnionSolidAngle(
 }
 } // namespace
 
+double UnionCoveredShare(
+  const Blockers& leaves, const float p[3], const float n[3], int directions, bool everyPair)
+{
+  const int samples = std::max(16, directions);
+  const CosineFibonacci& fibonacci = CosineFibonacci::Get(samples);
+  const double axis[3] = { n[0], n[1], n[2] };
+  double t[3], b[3];
+  FrameAbout(axis, t, b);
+  // The directions, once per receiver.
+  thread_local std::vector<double> directionsAt;
+  thread_local std::vector<char> hit;
+  directionsAt.resize(3 * static_cast<std::size_t>(samples));
+  hit.assign(samples, 0);
+  for (int k = 0; k < samples; ++k)
+  {
+    const double side = fibonacci.Side[k], up = fibonacci.Up[k], c = fibonacci.Cos[k],
+                 s = fibonacci.Sin[k];
+    for (int q = 0; q < 3; ++q)
+    {
+      directionsAt[3 * k + q] = up * axis[q] + side * (c * t[q] + s * b[q]);
+    }
+  }
+  // A leaf can only meet the directions whose polar angle lies within its
+  // angular radius of its own: the samples run in polar angle (u = sin^2),
+  // so each leaf tests one range of them, widened against rounding. The
+  // count is the union's, whatever order the leaves mark it in.
+  for (std::size_t j = 0; j < leaves.Spheres(); ++j)
+  {
+    const double e[3] = { leaves.X[j] - p[0], leaves.Y[j] - p[1], leaves.Z[j] - p[2] };
+    const double ee = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+    const double rr = static_cast<double>(leaves.R[j]) * leaves.R[j];
+    const double height = e[0] * axis[0] + e[1] * axis[1] + e[2] * axis[2];
+    if (!everyPair && !(height > -1.001 * leaves.R[j] - 1e-30))
+    {
+      continue; // wholly below the receiver's plane (or not a number)
+    }
+    int first = 0, last = samples - 1;
+    const double len = std::sqrt(ee);
+    if (!everyPair && len > 0.0 && ee > rr && std::isfinite(len))
+    {
+      const double margin = 1e-4;
+      const double polar = std::acos(std::max(-1.0, std::min(1.0, height / len)));
+      const double radius = std::asin(std::min(1.0, leaves.R[j] / len));
+      const double lo = std::max(0.0, polar - radius - margin);
+      const double hi = std::min(0.5 * sh::Pi, polar + radius + margin);
+      if (lo >= hi)
+      {
+        continue;
+      }
+      const double sinLo = std::sin(lo), sinHi = std::sin(hi);
+      first = std::max(0, static_cast<int>(std::floor(sinLo * sinLo * samples - 0.5)) - 1);
+      last = std::min(samples - 1, static_cast<int>(std::ceil(sinHi * sinHi * samples - 0.5)) + 1);
+    }
+    for (int k = first; k <= last; ++k)
+    {
+      if (hit[k])
+      {
+        continue;
+      }
+      const double* w = &directionsAt[3 * k];
+      const double along = e[0] * w[0] + e[1] * w[1] + e[2] * w[2];
+      if (along > 0.0 && ee - along * along < rr)
+      {
+        hit[k] = 1;
+      }
+    }
+  }
+  int hits = 0;
+  for (int k = 0; k < samples; ++k)
+  {
+    hits += hit[k];
+  }
+  return static_cast<double>(hits) / samples;
+}
+
 float ScaleCutToUnion(Blockers& cut, const Blockers& leaves, const SoftShadows& kernel,
   const float p[3], const float n[3], int directions)
 {
@@ -551,31 +658,7 @@ float ScaleCutToUnion(Blockers& cut, const Blockers& leaves, const SoftShadows& 
     return 1.0f;
   }
   // The union's cosine-weighted share of the hemisphere.
-  const int samples = std::max(16, directions);
-  const double axis[3] = { n[0], n[1], n[2] };
-  double t[3], b[3];
-  FrameAbout(axis, t, b);
-  const double golden = sh::Pi * (3.0 - std::sqrt(5.0));
-  int hits = 0;
-  for (int k = 0; k < samples; ++k)
-  {
-    const double u = (k + 0.5) / samples, side = std::sqrt(u), up = std::sqrt(1.0 - u);
-    const double c = std::cos(golden * k), s = std::sin(golden * k);
-    double w[3];
-    for (int q = 0; q < 3; ++q)
-    {
-      w[q] = up * axis[q] + side * (c * t[q] + s * b[q]);
-    }
-    for (std::size_t j = 0; j < leaves.Spheres(); ++j)
-    {
-      if (RayMeetsSphere(p, w, leaves.X[j], leaves.Y[j], leaves.Z[j], leaves.R[j]))
-      {
-        ++hits;
-        break;
-      }
-    }
-  }
-  const double covered = static_cast<double>(hits) / samples;
+  const double covered = UnionCoveredShare(leaves, p, n, directions);
   if (cut.Ratio.size() != static_cast<std::size_t>(order) * cut.Spheres())
   {
     cut.Ratio.assign(static_cast<std::size_t>(order) * cut.Spheres(), 1.0f);

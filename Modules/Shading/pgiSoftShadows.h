@@ -200,6 +200,16 @@ private:
  * 1 when the cut
  * blocks no more than the union or the kernel does not apply ratios.
  */
+/**
+ * The share of `directions` cosine-weighted spherical-Fibonacci directions
+ * about n from p that meet a sphere of `leaves` (the union's cosine-weighted
+ * blocked share). Each sphere tests only the directions whose polar angle
+ * its cone can reach; everyPair tests every direction against every sphere
+ * (the reference the tests hold it to: the same count).
+ */
+PROXYGISHADING_EXPORT double UnionCoveredShare(const Blockers& leaves, const float p[3],
+  const float n[3], int directions, bool everyPair = false);
+
 PROXYGISHADING_EXPORT float ScaleCutToUnion(Blockers& cut, const Blockers& leaves,
   const SoftShadows& kernel, const float p[3], const float n[3], int directions = 2048);
 

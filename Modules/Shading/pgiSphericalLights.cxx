@@ -4,6 +4,7 @@
 
 #include "pgiEnvironmentShading.h"
 #include "pgiMaterial.h"
+#include "pgiSHBasis.h"
 #include "pgiSHLightTables.h"
 #include "pgiSHSphericalLight.h"
 #include "pgiSHTables.h"
@@ -241,12 +242,21 @@ bool ShadowedIndirect::ExitRadiance(const SphericalLights& lights, bool emitLigh
 
   const std::size_t entries = s.List.size();
   s.Logs.resize(entries * n2);
+  s.Basis.resize(entries * n2);
   float zh[sh::MaxOrder];
   for (std::size_t a = 0; a < entries; ++a)
   {
+    // The basis serves the log and the light's radiance below.
+    float* basis = &s.Basis[a * n2];
+    sh::EvaluateBasis(order, s.List[a].Dir[0], s.List[a].Dir[1], s.List[a].Dir[2], basis);
     caps.CapLog(s.List[a].Theta, zh);
-    sh::RotateScaledZonal(
-      order, zh, s.List[a].Dir[0], s.List[a].Dir[1], s.List[a].Dir[2], &s.Logs[a * n2]);
+    for (int l = 0; l < order; ++l)
+    {
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+      {
+        s.Logs[a * n2 + i] = basis[i] * zh[l];
+      }
+    }
   }
   // Planes block every SL as 90-degree caps when they are in log space (else
   // the light of the first pass carries them, and SLs sit above them).
@@ -326,7 +336,8 @@ bool ShadowedIndirect::ExitRadiance(const SphericalLights& lights, bool emitLigh
       const float ratio = lights.ReflectionRatio.empty() ? 1.0f : lights.ReflectionRatio[e.Index];
       for (int c = 0; c < 3; ++c)
       {
-        lbar[c] = ratio * tables.SphericalLightRadiance(e.Theta, e.Dir, radiance + c * n2);
+        lbar[c] = ratio *
+          tables.SphericalLightRadianceFromBasis(e.Theta, &s.Basis[k * n2], radiance + c * n2);
       }
     }
     else if (!blocks)

@@ -122,7 +122,8 @@ struct SphericalLightScratch
   std::vector<Seen> List, Sorted;
   std::vector<float> ObjectKey;
   std::vector<std::size_t> Rank;
-  std::vector<float> Logs; // Order^2 per entry of List
+  std::vector<float> Logs;  // Order^2 per entry of List
+  std::vector<float> Basis; // the SH basis at each entry's direction
   std::vector<int> Excluded;
   // The distinct blocker sets the lights need the exp of (Order^2 each), their
   // keys (a bit per sorted entry; cacheable ones are looked up), their exps

@@ -350,8 +350,29 @@ void vtkPGIGIBake::ProjectEnvironment(const proxygi::EnvironmentMap& map)
   }
   const proxygi::EnvironmentMap* environment = takeOut ? &bright.Residual : &map;
   const int order = b.Order, n2 = order * order;
-  b.Light.assign(3 * static_cast<std::size_t>(n2), 0.0);
-  environment->ProjectSH(order, &b.Light[0], &b.Light[n2], &b.Light[2 * n2]);
+  // With planes in the light, each map is projected once at the planes'
+  // product order; its first order^2 coefficients are the order-n ones.
+  b.PlanesInLight = this->Settings->GetPlaneBlocking() == vtkPGIGISettings::PLANES_IN_LIGHT &&
+    b.SceneBlockers.Planes() > 0;
+  const int high = proxygi::LightAbovePlanesOrder(order), h2 = high * high;
+  const auto project = [&](const proxygi::EnvironmentMap& from, std::vector<double>& out,
+                         std::vector<double>& projected)
+  {
+    out.assign(3 * static_cast<std::size_t>(n2), 0.0);
+    if (!b.PlanesInLight)
+    {
+      from.ProjectSH(order, &out[0], &out[n2], &out[2 * n2]);
+      return;
+    }
+    projected.assign(3 * static_cast<std::size_t>(h2), 0.0);
+    from.ProjectSH(high, &projected[0], &projected[h2], &projected[2 * h2]);
+    for (int c = 0; c < 3; ++c)
+    {
+      std::copy_n(&projected[c * static_cast<std::size_t>(h2)], n2, &out[c * n2]);
+    }
+  };
+  std::vector<double> projected;
+  project(*environment, b.Light, projected);
   const auto path = this->Settings->GetShadingPath() == vtkPGIGISettings::SHADING_TABLE
     ? proxygi::EnvironmentShading::Path::Table
     : proxygi::EnvironmentShading::Path::ProductMatrix;
@@ -359,14 +380,12 @@ void vtkPGIGIBake::ProjectEnvironment(const proxygi::EnvironmentMap& map)
     order, &b.Light[0], &b.Light[n2], &b.Light[2 * n2], path);
   // With planes in the light, receivers above every plane get L times the
   // planes' steps; the others keep L and the planes in log space.
-  b.PlanesInLight = this->Settings->GetPlaneBlocking() == vtkPGIGISettings::PLANES_IN_LIGHT &&
-    b.SceneBlockers.Planes() > 0;
   b.LightAbovePlanes = b.Light;
   b.PlaneVisibility.assign(n2, 0.0);
   double* above = b.LightAbovePlanes.data();
   if (b.PlanesInLight)
   {
-    proxygi::LightAbovePlanes(*environment, order, b.SceneBlockers.PlaneNormal.data(),
+    proxygi::LightAbovePlanes(projected, order, b.SceneBlockers.PlaneNormal.data(),
       static_cast<int>(b.SceneBlockers.Planes()), above, above + n2, above + 2 * n2,
       b.PlaneVisibility.data());
   }
@@ -377,12 +396,11 @@ void vtkPGIGIBake::ProjectEnvironment(const proxygi::EnvironmentMap& map)
   {
     // The bounce sees the whole map (its coefficients; a table only where
     // the bounce's shading reads one, below).
-    bounceAbove.assign(3 * static_cast<std::size_t>(n2), 0.0);
-    map.ProjectSH(order, &bounceAbove[0], &bounceAbove[n2], &bounceAbove[2 * n2]);
+    project(map, bounceAbove, projected);
     if (b.PlanesInLight)
     {
       std::vector<double> unused(n2);
-      proxygi::LightAbovePlanes(map, order, b.SceneBlockers.PlaneNormal.data(),
+      proxygi::LightAbovePlanes(projected, order, b.SceneBlockers.PlaneNormal.data(),
         static_cast<int>(b.SceneBlockers.Planes()), &bounceAbove[0], &bounceAbove[n2],
         &bounceAbove[2 * n2], unused.data());
     }

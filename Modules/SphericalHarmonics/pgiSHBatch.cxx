@@ -7,6 +7,7 @@
 #include "hwy/highway.h"
 
 #include "pgiSHBatch.h"
+#include "pgiSHLightTables.h"
 #include "pgiSHTables.h"
 #include "pgiSHTripleProduct.h"
 
@@ -437,6 +438,89 @@ void GuardBoundsImpl(int order, const float* g, float tolerance, float* outside)
   }
 }
 
+// One table look-up per band for a vector of angles: rows of `order` floats
+// (CapTables and IndirectTables lay theirs out alike), linear between rows.
+HWY_INLINE void TableLanes(
+  const float* table, int resolution, float thetaScale, int order, V theta, Lane* out)
+{
+  const D d;
+  const hn::RebindToSigned<D> di;
+  const int last = resolution - 1;
+  const V u = hn::Min(hn::Max(hn::Mul(theta, hn::Set(d, thetaScale)), hn::Zero(d)),
+    hn::Set(d, static_cast<float>(last)));
+  auto row = hn::Min(hn::ConvertTo(di, u), hn::Set(di, last - 1));
+  const V t = hn::Sub(u, hn::ConvertTo(d, row));
+  const auto base = hn::Mul(row, hn::Set(di, order));
+  for (int l = 0; l < order; ++l)
+  {
+    const auto at = hn::Add(base, hn::Set(di, l));
+    const V r0 = hn::GatherIndex(d, table, at);
+    const V r1 = hn::GatherIndex(d, table, hn::Add(at, hn::Set(di, order)));
+    out[l] = Lane(hn::MulAdd(hn::Sub(r1, r0), t, r0));
+  }
+}
+
+void BatchIndirectWeightsImpl(const CapTables& caps, const IndirectTables& indirect, int order,
+  const float* theta, const float* dirX, const float* dirY, const float* dirZ, const float* h,
+  int channels, const float* radiances, float* capWeight, float* kappa)
+{
+  const D d;
+  const int lanes = static_cast<int>(hn::Lanes(d));
+  const float fourPi = static_cast<float>(4.0 * Pi);
+  for (int k = 0; k < W; k += lanes)
+  {
+    const V th = hn::Load(d, theta + k);
+    const auto keep = hn::Ge(th, hn::Zero(d));
+    Lane zCap[MaxOrder], zAveraged[MaxOrder], y[MaxCoefficients];
+    TableLanes(caps.GetVisibilityTableFloat().data(), caps.GetResolution(),
+      static_cast<float>(caps.GetThetaScale()), order, th, zCap);
+    // Visibility -> the cap itself: 4 pi - v_0, then -v_l.
+    zCap[0] = Lane(hn::Sub(hn::Set(d, fourPi), zCap[0].v));
+    for (int l = 1; l < order; ++l)
+    {
+      zCap[l] = Lane(hn::Neg(zCap[l].v));
+    }
+    // Skipped lanes may hold any direction: zero it, so y stays finite.
+    BasisLanes(order, Lane(hn::IfThenElseZero(keep, hn::Load(d, dirX + k))),
+      Lane(hn::IfThenElseZero(keep, hn::Load(d, dirY + k))),
+      Lane(hn::IfThenElseZero(keep, hn::Load(d, dirZ + k))), y);
+    // Band by band, as the scalar code sums.
+    V weight = hn::Zero(d);
+    for (int l = 0; l < order; ++l)
+    {
+      V band = hn::Zero(d);
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+      {
+        band = hn::MulAdd(hn::Set(d, h[i]), y[i].v, band);
+      }
+      weight = hn::MulAdd(zCap[l].v, band, weight);
+    }
+    hn::Store(hn::IfThenElseZero(keep, weight), d, capWeight + k);
+    if (channels <= 0)
+    {
+      continue;
+    }
+    TableLanes(indirect.GetAveragedTableFloat().data(), indirect.GetResolution(),
+      static_cast<float>(indirect.GetThetaScale()), order, th, zAveraged);
+    const int n2 = order * order;
+    for (int c = 0; c < channels; ++c)
+    {
+      const float* r = radiances + c * n2;
+      V sum = hn::Zero(d);
+      for (int l = 0; l < order; ++l)
+      {
+        V band = hn::Zero(d);
+        for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+        {
+          band = hn::MulAdd(y[i].v, hn::Set(d, r[i]), band);
+        }
+        sum = hn::MulAdd(zAveraged[l].v, band, sum);
+      }
+      hn::Store(hn::IfThenElseZero(keep, sum), d, kappa + c * W + k);
+    }
+  }
+}
+
 // Zeros the lanes whose finite is 0.
 void ZeroLanesImpl(int n2, const float* finite, float* g)
 {
@@ -471,6 +555,7 @@ HWY_EXPORT(LaneNormsImpl);
 HWY_EXPORT(LaneBaseImpl);
 HWY_EXPORT(ZeroLanesImpl);
 HWY_EXPORT(GuardBoundsImpl);
+HWY_EXPORT(BatchIndirectWeightsImpl);
 
 namespace
 {
@@ -563,6 +648,14 @@ void BatchAddCaps(const CapTables& tables, int order, int count, const float* th
 {
   HWY_DYNAMIC_DISPATCH(BatchAddCapsImpl)
   (tables, order, count, theta, dirX, dirY, dirZ, ratios, f);
+}
+
+void BatchIndirectWeights(const CapTables& caps, const IndirectTables& indirect, int order,
+  const float* theta, const float* dirX, const float* dirY, const float* dirZ, const float* h,
+  int channels, const float* radiances, float* capWeight, float* kappa)
+{
+  HWY_DYNAMIC_DISPATCH(BatchIndirectWeightsImpl)
+  (caps, indirect, order, theta, dirX, dirY, dirZ, h, channels, radiances, capWeight, kappa);
 }
 
 void BatchExp(int order, const float* f, float* g, const ExpOptions& options, Status* status)

@@ -9,7 +9,9 @@
  *  - BatchSquare: TripleProduct::Square;
  *  - BatchAddCaps: CapTables::CapLog + RotateScaledZonal, summed;
  *  - BatchExp: Exp (HYB vectorised, including the range guard; the other
- *    methods run the scalar Exp lane by lane).
+ *    methods run the scalar Exp lane by lane);
+ *  - BatchIndirectWeights: the averaged bounce's per-proxy cap weight and
+ *    AveragedRadiances (IndirectExitRadiance's loop over proxies).
  * Results agree with the scalar kernels to float rounding (the vector code
  * fuses multiply-adds the scalar code rounds twice).
  */
@@ -27,6 +29,7 @@ namespace proxygi
 namespace sh
 {
 class CapTables;
+class IndirectTables;
 
 /// Lanes per batch: 16 floats, one AVX-512 register (two AVX2, four SSE).
 constexpr int BatchWidth = 16;
@@ -58,6 +61,21 @@ PROXYGISPHERICALHARMONICS_EXPORT void BatchSquare(int order, const float* f, flo
 PROXYGISPHERICALHARMONICS_EXPORT void BatchAddCaps(const CapTables& tables, int order, int count,
   const float* theta, const float* dirX, const float* dirY, const float* dirZ, const float* ratios,
   float* f);
+
+/**
+ * The averaged bounce's weights of BatchWidth proxies seen from one
+ * receiver (theta, dirX, dirY, dirZ: BatchWidth values each; unit
+ * directions receiver -> centre): capWeight = h . the cap of half-angle
+ * theta about dir (CapTables::CapVisibility turned into the cap, rotated),
+ * and for each of `channels` radiance SH (order^2 floats each, one after the
+ * other) kappa_c = IndirectTables::AveragedRadiances. h: the receiver's
+ * DiffuseTransfer. Lanes with a negative theta get zeros. kappa: channels
+ * rows of BatchWidth; channels 0 leaves it alone.
+ */
+PROXYGISPHERICALHARMONICS_EXPORT void BatchIndirectWeights(const CapTables& caps,
+  const IndirectTables& indirect, int order, const float* theta, const float* dirX,
+  const float* dirY, const float* dirZ, const float* h, int channels, const float* radiances,
+  float* capWeight, float* kappa);
 
 /**
  * g = exp(f) for BatchWidth lanes, as Exp<float> does per lane; status

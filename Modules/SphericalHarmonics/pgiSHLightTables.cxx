@@ -594,9 +594,40 @@ template <typename T>
 void IndirectTables::AveragedRadiances(
   T theta, const T d[3], int count, const T* const* radiances, T* kappas) const
 {
-  T zh[MaxOrder], basis[MaxCoefficients];
-  this->AveragedIndirect(theta, zh);
+  T basis[MaxCoefficients];
   EvaluateBasis(this->Order, d[0], d[1], d[2], basis);
+  this->AveragedRadiancesFromBasis(theta, basis, count, radiances, kappas);
+}
+
+template <typename T>
+void IndirectTables::AveragedRadiancesFromBasis(
+  T theta, const T* basis, int count, const T* const* radiances, T* kappas) const
+{
+  T zh[MaxOrder];
+  this->AveragedIndirect(theta, zh);
+  if (count == 3)
+  {
+    // Colour: the channels' sums side by side (each in the order below).
+    const T *r0 = radiances[0], *r1 = radiances[1], *r2 = radiances[2];
+    T k0 = T(0), k1 = T(0), k2 = T(0);
+    for (int l = 0; l < this->Order; ++l)
+    {
+      T b0 = T(0), b1 = T(0), b2 = T(0);
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+      {
+        b0 += basis[i] * r0[i];
+        b1 += basis[i] * r1[i];
+        b2 += basis[i] * r2[i];
+      }
+      k0 += zh[l] * b0;
+      k1 += zh[l] * b1;
+      k2 += zh[l] * b2;
+    }
+    kappas[0] = k0;
+    kappas[1] = k1;
+    kappas[2] = k2;
+    return;
+  }
   for (int c = 0; c < count; ++c)
   {
     const T* radiance = radiances[c];
@@ -617,10 +648,17 @@ void IndirectTables::AveragedRadiances(
 template <typename T>
 T IndirectTables::SphericalLightRadiance(T theta, const T d[3], const T* radiance) const
 {
-  // w's axis is -d: y_lm(-d) = (-1)^l y_lm(d).
-  T zh[MaxOrder], basis[MaxCoefficients];
-  this->SphericalLightWeight(theta, zh);
+  T basis[MaxCoefficients];
   EvaluateBasis(this->Order, d[0], d[1], d[2], basis);
+  return this->SphericalLightRadianceFromBasis(theta, basis, radiance);
+}
+
+template <typename T>
+T IndirectTables::SphericalLightRadianceFromBasis(T theta, const T* basis, const T* radiance) const
+{
+  // w's axis is -d: y_lm(-d) = (-1)^l y_lm(d).
+  T zh[MaxOrder];
+  this->SphericalLightWeight(theta, zh);
   T value = T(0);
   for (int l = 0; l < this->Order; ++l)
   {
@@ -859,7 +897,11 @@ void AnalyticLightTables::Evaluate(const T normal[3], const T d[3], T theta, T* 
     T, const T*, const T*) const;                                                                  \
   template PROXYGISPHERICALHARMONICS_EXPORT void IndirectTables::AveragedRadiances<T>(             \
     T, const T*, int, const T* const*, T*) const;                                                  \
+  template PROXYGISPHERICALHARMONICS_EXPORT void IndirectTables::AveragedRadiancesFromBasis<T>(    \
+    T, const T*, int, const T* const*, T*) const;                                                  \
   template PROXYGISPHERICALHARMONICS_EXPORT T IndirectTables::SphericalLightRadiance<T>(           \
+    T, const T*, const T*) const;                                                                  \
+  template PROXYGISPHERICALHARMONICS_EXPORT T IndirectTables::SphericalLightRadianceFromBasis<T>(  \
     T, const T*, const T*) const;                                                                  \
   template PROXYGISPHERICALHARMONICS_EXPORT void IndirectTables::AveragedIndirectFit<T>(T, T*)     \
     const;                                                                                         \

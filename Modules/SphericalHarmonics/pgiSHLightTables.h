@@ -58,11 +58,12 @@ namespace sh
 {
 
 /// Solid angle 2 pi (1 - cos theta) of a sphere of angular radius theta.
-inline double CapSolidAngle(double theta)
+template <typename T>
+inline T CapSolidAngle(T theta)
 {
   // 1 - cos = 2 sin^2(theta / 2) without cancellation.
-  const double s = std::sin(0.5 * theta);
-  return 4.0 * Pi * s * s;
+  const T s = std::sin(T(0.5) * theta);
+  return T(4.0 * Pi) * s * s;
 }
 
 /**
@@ -162,6 +163,10 @@ public:
 
   int GetOrder() const { return this->Order; }
   int GetResolution() const { return this->Resolution; }
+  /// theta's scale to table rows, and the float D table AveragedIndirect
+  /// reads (Resolution rows of Order values; the batched kernels gather it).
+  double GetThetaScale() const { return this->ThetaScale; }
+  const std::vector<float>& GetAveragedTableFloat() const { return this->DF; }
 
   /// D(theta): scaled ZH, lobe axis +z = receiver -> proxy centre.
   template <typename T>
@@ -197,9 +202,19 @@ public:
   void AveragedRadiances(
     T theta, const T d[3], int count, const T* const* radiances, T* kappas) const;
 
+  /// The same with the basis at d already evaluated (EvaluateBasis), for
+  /// callers that need it for the cap too.
+  template <typename T>
+  void AveragedRadiancesFromBasis(
+    T theta, const T* basis, int count, const T* const* radiances, T* kappas) const;
+
   /// Guerrero's average radiance w_theta . R for a light in direction d (receiver -> centre).
   template <typename T>
   T SphericalLightRadiance(T theta, const T d[3], const T* radiance) const;
+
+  /// The same with the basis at d already evaluated (EvaluateBasis).
+  template <typename T>
+  T SphericalLightRadianceFromBasis(T theta, const T* basis, const T* radiance) const;
 
   /**
    * Exact incident radiance SH at the receiver, R^-1 M(theta) R applied to

@@ -82,6 +82,8 @@ public:
   /// The float log table the lookups read, and theta's scale to its rows
   /// (the batched kernels gather from it).
   const std::vector<float>& GetLogTableFloat() const { return this->LogF; }
+  /// The float visibility table CapVisibility reads.
+  const std::vector<float>& GetVisibilityTableFloat() const { return this->VisibilityF; }
   /// The same floats band by band: band l's rows start at l * BandStride and
   /// run on past the last row (repeated) far enough for a vector load from
   /// any row, so lanes whose rows lie close take theirs by permutation.

@@ -7,8 +7,10 @@
 
 #include "pgiTesting.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -217,5 +219,111 @@ int TestProxiesSphereMath(int, char*[])
   BuildSphereTree(two, level, parent);
   PGI_CHECK(two.size() == 3 && parent[0] == 2 && parent[1] == 2 && level[2] == 1);
   PGI_CHECK(Contains(two[2], a, 1e-12) && Contains(two[2], b, 1e-12));
+
+  // Lloyd's clusters search the centres along one axis from each point's
+  // last centre: the same clusters and centres as scanning every centre
+  // (ties to the lowest index), on scattered, gridded (many ties), flat and
+  // non-finite points.
+  {
+    const auto reference = [](const std::vector<double>& points,
+                             std::vector<std::array<double, 3>>& centres, int iterations)
+    {
+      const int n = static_cast<int>(points.size() / 3), k = static_cast<int>(centres.size());
+      std::vector<int> assign(n, -1);
+      for (int iteration = 0; iteration < iterations; ++iteration)
+      {
+        bool changed = false;
+        for (int i = 0; i < n; ++i)
+        {
+          int best = 0;
+          double bestD = std::numeric_limits<double>::max();
+          for (int c = 0; c < k; ++c)
+          {
+            const double dx = points[3 * i] - centres[c][0], dy = points[3 * i + 1] - centres[c][1],
+                         dz = points[3 * i + 2] - centres[c][2];
+            const double d = dx * dx + dy * dy + dz * dz;
+            if (d < bestD)
+            {
+              bestD = d;
+              best = c;
+            }
+          }
+          changed = changed || assign[i] != best;
+          assign[i] = best;
+        }
+        if (!changed)
+        {
+          break;
+        }
+        std::vector<std::array<double, 3>> sum(k, { 0.0, 0.0, 0.0 });
+        std::vector<int> count(k, 0);
+        for (int i = 0; i < n; ++i)
+        {
+          for (int q = 0; q < 3; ++q)
+          {
+            sum[assign[i]][q] += points[3 * i + q];
+          }
+          ++count[assign[i]];
+        }
+        for (int c = 0; c < k; ++c)
+        {
+          for (int q = 0; count[c] > 0 && q < 3; ++q)
+          {
+            centres[c][q] = sum[c][q] / count[c];
+          }
+        }
+      }
+      return assign;
+    };
+    int differ = 0, runs = 0;
+    for (int kind = 0; kind < 4; ++kind)
+    {
+      std::vector<double> points;
+      for (int i = 0; i < 3000; ++i)
+      {
+        if (kind == 1)
+        {
+          // A grid: equidistant centres tie.
+          points.insert(points.end(), { double(i % 10), double((i / 10) % 10), double(i / 100) });
+        }
+        else
+        {
+          points.insert(points.end(),
+            { Uniform(rng, -5, 5), Uniform(rng, -1, 1), kind == 2 ? 0.0 : Uniform(rng, -3, 3) });
+        }
+      }
+      if (kind == 3)
+      {
+        points[30] = std::nan("");
+        points[61] = HUGE_VAL;
+      }
+      for (const int k : { 1, 7, 64 })
+      {
+        std::vector<std::array<double, 3>> seeds(k), mine(k), theirs(k);
+        for (int c = 0; c < k; ++c)
+        {
+          const int i = (c * 2999) / std::max(1, k - 1) % 3000;
+          seeds[c] = { points[3 * i], points[3 * i + 1], points[3 * i + 2] };
+        }
+        mine = theirs = seeds;
+        const std::vector<int> fast = LloydClusters(points.data(), 3000, mine, 6);
+        const std::vector<int> slow = reference(points, theirs, 6);
+        ++runs;
+        bool same = fast == slow;
+        for (int c = 0; same && c < k; ++c)
+        {
+          for (int q = 0; q < 3; ++q)
+          {
+            same = same &&
+              (mine[c][q] == theirs[c][q] || (std::isnan(mine[c][q]) && std::isnan(theirs[c][q])));
+          }
+        }
+        differ += same ? 0 : 1;
+      }
+    }
+    std::printf(
+      "Lloyd's clusters: %d of %d runs differ from scanning every centre\n", differ, runs);
+    PGI_CHECK(differ == 0);
+  }
   return pgitest::Result();
 }

@@ -215,6 +215,68 @@ int TestSoftShadowsHierarchy(int, char*[])
     Blockers none;
     PGI_NEAR(ScaleCutToUnion(none, row, shadows, p, up), 1.0, 0.0);
   }
+  // The union's share tests each sphere against the directions its cone can
+  // reach: the same count as every direction against every sphere, for
+  // random spheres around tilted receivers, spheres straddling or below the
+  // receiver's plane, a receiver inside a sphere, tiny, huge and grazing
+  // spheres, and a sphere at the receiver itself.
+  {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), r01(0.0f, 1.0f);
+    int cases = 0, mismatches = 0;
+    double coveredSum = 0.0;
+    for (int trial = 0; trial < 200; ++trial)
+    {
+      Blockers set;
+      const float p[3] = { u(rng), u(rng), u(rng) };
+      float n[3] = { u(rng), u(rng), u(rng) };
+      const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (float& c : n)
+      {
+        c /= len;
+      }
+      const int count = 1 + trial % 24;
+      for (int k = 0; k < count; ++k)
+      {
+        const float scale = trial % 5 == 0 ? 1e-3f : (trial % 7 == 0 ? 50.0f : 1.0f);
+        set.AddSphere(p[0] + 3.0f * u(rng), p[1] + 3.0f * u(rng), p[2] + 3.0f * u(rng),
+          scale * (0.02f + 0.8f * r01(rng)));
+      }
+      if (trial % 9 == 0)
+      {
+        set.AddSphere(p[0], p[1], p[2], 0.3f); // the receiver inside
+      }
+      if (trial % 11 == 0)
+      {
+        set.AddSphere(p[0], p[1], p[2], 0.0f); // at the receiver, no radius
+      }
+      if (trial % 13 == 0)
+      {
+        // Grazing: centred on the receiver's plane.
+        float t[3] = { n[1], -n[0], 0.0f };
+        set.AddSphere(p[0] + 2.0f * t[0], p[1] + 2.0f * t[1], p[2], 0.2f);
+      }
+      for (const int directions : { 512, 2048 })
+      {
+        const double pruned = UnionCoveredShare(set, p, n, directions);
+        const double every = UnionCoveredShare(set, p, n, directions, true);
+        ++cases;
+        mismatches += pruned == every ? 0 : 1;
+        coveredSum += every;
+      }
+    }
+    std::printf("union's share: %d of %d cases differ from every-pair testing (mean share "
+                "%.3f)\n",
+      mismatches, cases, coveredSum / cases);
+    PGI_CHECK(mismatches == 0);
+    PGI_CHECK(coveredSum > 0.1 * cases); // the cases do cover something
+    Blockers nan;
+    nan.AddSphere(std::nanf(""), 0.0f, 1.0f, 0.5f);
+    nan.AddSphere(0.0f, 0.0f, 1.0f, 0.5f);
+    const float origin[3] = { 0, 0, 0 };
+    const double withNaN = UnionCoveredShare(nan, origin, up, 512);
+    PGI_CHECK(std::isfinite(withNaN) && withNaN > 0.0 && withNaN < 1.0);
+  }
   // Through the filter: proxies with Level and Parent arrays, a receiver
   // plane; the cut at 25 degrees against all leaves.
   {

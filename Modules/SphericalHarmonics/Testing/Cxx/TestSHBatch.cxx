@@ -1,9 +1,11 @@
 // The batched SH kernels on every instruction set this CPU runs, against
 // their scalar twins lane by lane: the square, the summed rotated cap logs,
-// and the exp (HYB vectorised, the other methods lane by lane), with
-// non-finite and zero lanes mixed in. Agreement within 1e-5 of the vector's
-// size; statuses equal.
+// the averaged bounce's per-proxy weights, and the exp (HYB vectorised, the
+// other methods lane by lane), with non-finite and zero lanes mixed in.
+// Agreement within 1e-5 of the vector's size; statuses equal.
+#include "pgiSHBasis.h"
 #include "pgiSHBatch.h"
+#include "pgiSHLightTables.h"
 #include "pgiSHTables.h"
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
@@ -82,7 +84,7 @@ int TestSHBatch(int, char*[])
   {
     PGI_CHECK(SetBatchTarget(target));
     PGI_CHECK(target == BatchTargetName());
-    double worstSquare = 0.0, worstCaps = 0.0, worstExp[4] = { 0, 0, 0, 0 };
+    double worstSquare = 0.0, worstCaps = 0.0, worstWeights = 0.0, worstExp[4] = { 0, 0, 0, 0 };
     for (int order = 1; order <= MaxOrder; ++order)
     {
       const int n2 = NumCoefficients(order);
@@ -167,6 +169,63 @@ int TestSHBatch(int, char*[])
           }
           worstCaps = std::max(worstCaps, LaneError(n2, out, k, sum));
         }
+        // The averaged bounce's weights: the cap's irradiance weight and
+        // each channel's averaged radiance per proxy, against CapVisibility,
+        // the rotated cap and AveragedRadiances; skipped lanes zero.
+        {
+          // A stream of its own: the other kernels' inputs stay as they were.
+          std::mt19937 weightsRng(1000 * order + trial);
+          const IndirectTables& indirect = IndirectTables::Get(order);
+          alignas(64) float th[W], wx[W], wy[W], wz[W], weights[W], kappas[3 * W];
+          float h[MaxCoefficients], radiances[3 * MaxCoefficients];
+          float axis[3] = { u(weightsRng), u(weightsRng), u(weightsRng) };
+          const float len =
+            std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]) + 1e-6f;
+          DiffuseTransfer(order, axis[0] / len, axis[1] / len, axis[2] / len, h);
+          for (float& v : radiances)
+          {
+            v = normal(weightsRng);
+          }
+          for (int k = 0; k < W; ++k)
+          {
+            th[k] = k == 6 ? -1.0f : angle(weightsRng); // beyond pi/2 clamps; one lane skipped
+            wx[k] = dx[k];
+            wy[k] = dy[k];
+            wz[k] = dz[k];
+          }
+          wx[6] = std::numeric_limits<float>::quiet_NaN(); // skipped: must not leak
+          BatchIndirectWeights(
+            tables, indirect, order, th, wx, wy, wz, h, 3, radiances, weights, kappas);
+          for (int k = 0; k < W; ++k)
+          {
+            if (!(th[k] >= 0.0f))
+            {
+              PGI_CHECK(weights[k] == 0.0f && kappas[k] == 0.0f && kappas[2 * W + k] == 0.0f);
+              continue;
+            }
+            float zh[MaxOrder], cap[MaxCoefficients];
+            tables.CapVisibility(th[k], zh);
+            zh[0] = static_cast<float>(4.0 * Pi) - zh[0];
+            for (int l = 1; l < order; ++l)
+            {
+              zh[l] = -zh[l];
+            }
+            RotateScaledZonal(order, zh, wx[k], wy[k], wz[k], cap);
+            const float weight = Dot(n2, h, cap);
+            const float d[3] = { wx[k], wy[k], wz[k] };
+            const float* channels[3] = { radiances, radiances + n2, radiances + 2 * n2 };
+            float kappa[3];
+            indirect.AveragedRadiances(th[k], d, 3, channels, kappa);
+            const double scale = std::max(1.0, double(std::fabs(weight)));
+            worstWeights = std::max(worstWeights, std::fabs(weights[k] - weight) / scale);
+            for (int c = 0; c < 3; ++c)
+            {
+              worstWeights = std::max(worstWeights,
+                std::fabs(kappas[c * W + k] - kappa[c]) /
+                  std::max(1.0, double(std::fabs(kappa[c]))));
+            }
+          }
+        }
         // Exp, every method; lane 3 NaN, lane 4 infinite, lane 5 zero.
         RandomLogs(order, rng, f, aos);
         for (int i = 0; i < n2; ++i)
@@ -193,11 +252,13 @@ int TestSHBatch(int, char*[])
         }
       }
     }
-    std::printf("%s: worst lane error: square %.2e, caps %.2e, exp HYB %.2e, OL %.2e, PS* %.2e, "
-                "PS %.2e\n",
-      target.c_str(), worstSquare, worstCaps, worstExp[0], worstExp[1], worstExp[2], worstExp[3]);
+    std::printf("%s: worst lane error: square %.2e, caps %.2e, bounce weights %.2e, exp HYB "
+                "%.2e, OL %.2e, PS* %.2e, PS %.2e\n",
+      target.c_str(), worstSquare, worstCaps, worstWeights, worstExp[0], worstExp[1], worstExp[2],
+      worstExp[3]);
     PGI_BELOW(worstSquare, 1e-5);
     PGI_BELOW(worstCaps, 1e-5);
+    PGI_BELOW(worstWeights, 1e-5);
     for (double e : worstExp)
     {
       PGI_BELOW(e, 1e-5);
