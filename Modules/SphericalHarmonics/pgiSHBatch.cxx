@@ -4,6 +4,7 @@
 #define HWY_TARGET_INCLUDE "pgiSHBatch.cxx"
 #include "hwy/foreach_target.h" // IWYU pragma: keep
 
+#include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"
 
 #include "pgiSHBatch.h"
@@ -521,6 +522,104 @@ void BatchIndirectWeightsImpl(const CapTables& caps, const IndirectTables& indir
   }
 }
 
+// HybridExp's schedule per lane, in double vectors as HybridSchedule and
+// CapTables::OptimalLinear compute it: the steps s and blend weight from
+// |f^|, and the OL base at 2^-s and 2^-(s+1) (the finer level only where the
+// lane blends; zeros elsewhere). Returns false, writing nothing useful, when
+// a lane needs more than 60 steps (the caller then takes the scalar loop).
+bool HybridLanesImpl(const CapTables& tables, double limit, const float* f, const float* norm2,
+  const float* finite, std::int32_t* steps, float* keepWeight, float* squaredWeight, float* scale0,
+  float* slope0, float* dc0, float* base0, float* scale1, float* slope1, float* dc1, float* base1,
+  bool* blend)
+{
+  using D64 = hn::ScalableTag<double>;
+  const D64 dd;
+  const hn::Rebind<float, D64> df;
+  const hn::Rebind<std::int32_t, D64> di;
+  const hn::RebindToSigned<D64> dl;
+  const int lanes = static_cast<int>(hn::Lanes(dd));
+  const std::vector<double>& olA = tables.GetOptimalLinearA();
+  const std::vector<double>& olB = tables.GetOptimalLinearB();
+  const int last = tables.GetResolution() - 1;
+  const auto olScale = hn::Set(df, static_cast<float>(tables.GetOptimalLinearScale()));
+  const auto lastF = hn::Set(df, static_cast<float>(last));
+  const auto zero = hn::Zero(dd);
+  const auto one = hn::Set(dd, 1.0);
+  bool anyBlend = false;
+  for (int k = 0; k < W; k += lanes)
+  {
+    const auto ok = hn::Gt(hn::PromoteTo(dd, hn::LoadU(df, finite + k)), zero);
+    // |f^| as the scalar exp takes it: a float square root.
+    const auto norm = hn::IfThenElseZero(ok, hn::PromoteTo(dd, hn::Sqrt(hn::LoadU(df, norm2 + k))));
+    const auto dcExponent = hn::IfThenElseZero(
+      ok, hn::Div(hn::PromoteTo(dd, hn::LoadU(df, f + k)), hn::Set(dd, SqrtFourPi)));
+    // HybridSchedule: the log only where |f^| passes half the limit.
+    const auto ratio = hn::Div(norm, hn::Set(dd, limit));
+    const auto need = hn::And(hn::Gt(norm, zero), hn::Gt(ratio, hn::Set(dd, 0.5)));
+    const auto u = hn::Log2(dd, hn::IfThenElse(need, ratio, one));
+    const auto take = hn::And(need, hn::Gt(u, hn::Set(dd, -1.0)));
+    const auto s = hn::IfThenElseZero(take, hn::Max(zero, hn::Ceil(u)));
+    const auto w = hn::IfThenElseZero(take, hn::Min(one, hn::Sub(u, hn::Sub(s, one))));
+    if (!hn::AllTrue(dd, hn::Le(s, hn::Set(dd, 60.0))))
+    {
+      return false;
+    }
+    anyBlend = anyBlend || !hn::AllFalse(dd, hn::Gt(w, zero));
+    const auto stepsL = hn::ConvertTo(dl, s);
+    hn::StoreU(hn::DemoteTo(di, s), di, steps + k);
+    hn::StoreU(hn::DemoteTo(df, hn::Sub(one, w)), df, keepWeight + k);
+    hn::StoreU(hn::DemoteTo(df, w), df, squaredWeight + k);
+    const auto normF = hn::DemoteTo(df, norm);
+    for (int level = 0; level < 2; ++level)
+    {
+      // 2^-(s + level), exactly, from its exponent bits.
+      const auto exponent = hn::Sub(hn::Set(dl, 1023 - level), stepsL);
+      const auto power = hn::BitCast(dd, hn::ShiftLeft<52>(exponent));
+      const auto powerF = hn::DemoteTo(df, power);
+      // CapTables::OptimalLinear in float, its rows' blend in double.
+      const auto x = hn::Mul(normF, powerF);
+      const auto uf = hn::Mul(x, olScale);
+      const auto inside = hn::Lt(uf, lastF);
+      const auto inside64 = hn::Lt(hn::PromoteTo(dd, uf), hn::Set(dd, static_cast<double>(last)));
+      const auto row = hn::IfThenElse(hn::RebindMask(di, inside),
+        hn::ConvertTo(di, hn::Max(uf, hn::Zero(df))), hn::Set(di, last - 1));
+      const auto t = hn::IfThenElse(inside, hn::Sub(uf, hn::ConvertTo(df, row)), hn::Set(df, 1.0f));
+      const auto rowL = hn::PromoteTo(dl, row);
+      const auto t64 = hn::PromoteTo(dd, t);
+      const auto a0 = hn::GatherIndex(dd, olA.data(), rowL);
+      const auto a1 = hn::GatherIndex(dd, olA.data(), hn::Add(rowL, hn::Set(dl, 1)));
+      const auto b0 = hn::GatherIndex(dd, olB.data(), rowL);
+      const auto b1 = hn::GatherIndex(dd, olB.data(), hn::Add(rowL, hn::Set(dl, 1)));
+      // Past the table: its last values (t = 1 from row last - 1 would round).
+      const auto lastA = hn::Set(dd, olA[last]), lastB = hn::Set(dd, olB[last]);
+      const auto a = hn::DemoteTo(
+        df, hn::IfThenElse(inside64, hn::Add(a0, hn::Mul(hn::Sub(a1, a0), t64)), lastA));
+      const auto b = hn::DemoteTo(
+        df, hn::IfThenElse(inside64, hn::Add(b0, hn::Mul(hn::Sub(b1, b0), t64)), lastB));
+      const auto dc = hn::DemoteTo(df, hn::Exp(dd, hn::Mul(dcExponent, power)));
+      const auto base = hn::Mul(a, hn::Set(df, static_cast<float>(SqrtFourPi)));
+      if (level == 0)
+      {
+        hn::StoreU(powerF, df, scale0 + k);
+        hn::StoreU(b, df, slope0 + k);
+        hn::StoreU(dc, df, dc0 + k);
+        hn::StoreU(base, df, base0 + k);
+      }
+      else
+      {
+        // As the blend reads it: the lane's float weight above zero.
+        const auto on = hn::Gt(hn::DemoteTo(df, w), hn::Zero(df));
+        hn::StoreU(hn::IfThenElseZero(on, powerF), df, scale1 + k);
+        hn::StoreU(hn::IfThenElseZero(on, b), df, slope1 + k);
+        hn::StoreU(hn::IfThenElseZero(on, dc), df, dc1 + k);
+        hn::StoreU(hn::IfThenElseZero(on, base), df, base1 + k);
+      }
+    }
+  }
+  *blend = anyBlend;
+  return true;
+}
+
 // Zeros the lanes whose finite is 0.
 void ZeroLanesImpl(int n2, const float* finite, float* g)
 {
@@ -556,6 +655,7 @@ HWY_EXPORT(LaneBaseImpl);
 HWY_EXPORT(ZeroLanesImpl);
 HWY_EXPORT(GuardBoundsImpl);
 HWY_EXPORT(BatchIndirectWeightsImpl);
+HWY_EXPORT(HybridLanesImpl);
 
 namespace
 {
@@ -690,7 +790,16 @@ void BatchExp(int order, const float* f, float* g, const ExpOptions& options, St
   alignas(64) std::int32_t steps[W];
   HWY_DYNAMIC_DISPATCH(LaneNormsImpl)(n2, f, norm2, finite);
   bool blend = false;
+  const double limit =
+    options.HybridMaxNorm > 0.0 ? options.HybridMaxNorm : DefaultHybridMaxNorm(order);
+  const bool scheduled = HWY_DYNAMIC_DISPATCH(HybridLanesImpl)(tables, limit, f, norm2, finite,
+    steps, keepWeight, squaredWeight, scale[0], slope[0], dcScale[0], base[0], scale[1], slope[1],
+    dcScale[1], base[1], &blend);
   for (int k = 0; k < W; ++k)
+  {
+    status[k] = finite[k] > 0.0f ? Status::Ok : Status::NonFiniteInput;
+  }
+  for (int k = 0; !scheduled && k < W; ++k)
   {
     const bool ok = finite[k] > 0.0f;
     status[k] = ok ? Status::Ok : Status::NonFiniteInput;
@@ -703,7 +812,10 @@ void BatchExp(int order, const float* f, float* g, const ExpOptions& options, St
     keepWeight[k] = static_cast<float>(1.0 - wk);
     squaredWeight[k] = static_cast<float>(wk);
     blend = blend || wk > 0.0;
-    for (int level = 0; level < 2; ++level)
+    // The finer level only where the lane blends; elsewhere its base is zero
+    // (the blend then adds 0 x 0).
+    scale[1][k] = slope[1][k] = dcScale[1][k] = base[1][k] = 0.0f;
+    for (int level = 0; level < (wk > 0.0 ? 2 : 1); ++level)
     {
       // Powers of two multiply exactly: the same values as ldexp, cheaper.
       const double power = s + level < 64 ? 1.0 / static_cast<double>(1ULL << (s + level))

@@ -73,6 +73,8 @@ public:
   }
   /// Largest x the OL curves were fitted on (x of a cap of radius pi/2).
   double GetOptimalLinearMaxNorm() const { return this->OLMaxNorm; }
+  /// x's scale to the OL tables' rows.
+  double GetOptimalLinearScale() const { return this->OLScale; }
 
   /// Raw tables for upload: Resolution rows of Order scaled ZH values.
   const std::vector<double>& GetVisibilityTable() const { return this->Visibility; }
