@@ -233,7 +233,8 @@ int TestProxiesSphereMath(int, char*[])
         if (kind == 1)
         {
           // A grid: equidistant centres tie.
-          points.insert(points.end(), { double(i % 10), double((i / 10) % 10), double(i / 100) });
+          const int x = i % 10, y = (i / 10) % 10, z = i / 100;
+          points.insert(points.end(), { double(x), double(y), double(z) });
         }
         else
         {
