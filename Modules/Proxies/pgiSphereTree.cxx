@@ -134,12 +134,7 @@ std::vector<int> LloydClusters(const double* points, vtkIdType n,
           {
             for (int c = 0; c < k; ++c)
             {
-              const double d = Distance2(point, centres[c].data());
-              if (d < bestD)
-              {
-                bestD = d;
-                best = c;
-              }
+              consider(c);
             }
           }
           mine = mine || assign[i] != best;

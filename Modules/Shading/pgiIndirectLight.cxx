@@ -98,68 +98,25 @@ void IndirectExitRadiance(IndirectOperator op, const SecondaryLights& lights,
   float solidAngles = 0.0f;
   // Per proxy: H(N) . (cap about b.Dir), the cap's irradiance weight shared
   // by the cap-times-scalar operators, and the averaged operator's radiance
-  // per channel (before the albedo: the operator is linear). Batched over
-  // sh::BatchWidth proxies where the SIMD kernels run; else the scalar twin.
+  // per channel (before the albedo: the operator is linear), for
+  // sh::BatchWidth proxies at a time.
   constexpr int W = sh::BatchWidth;
   const bool averaged = op == IndirectOperator::Averaged;
-  const bool batched = sh::BatchKernelsEnabled();
   alignas(64) float theta[W], dx[W], dy[W], dz[W], weights[W], kappas[3 * W];
   const std::size_t count = seen.size();
   for (std::size_t first = 0; first < count; first += W)
   {
     const int lanes = static_cast<int>(std::min<std::size_t>(W, count - first));
-    if (batched)
+    for (int q = 0; q < W; ++q)
     {
-      for (int q = 0; q < W; ++q)
-      {
-        const SeenBlocker& b = seen[first + std::min(q, lanes - 1)];
-        theta[q] = q < lanes ? b.Theta : -1.0f;
-        dx[q] = b.Dir[0];
-        dy[q] = b.Dir[1];
-        dz[q] = b.Dir[2];
-      }
-      sh::BatchIndirectWeights(caps, indirect, order, theta, dx, dy, dz, h, averaged ? 3 : 0,
-        lights.Response.data(), weights, kappas);
+      const SeenBlocker& b = seen[first + std::min(q, lanes - 1)];
+      theta[q] = q < lanes ? b.Theta : -1.0f;
+      dx[q] = b.Dir[0];
+      dy[q] = b.Dir[1];
+      dz[q] = b.Dir[2];
     }
-    else
-    {
-      for (int q = 0; q < lanes; ++q)
-      {
-        const SeenBlocker& b = seen[first + q];
-        float zh[sh::MaxOrder], basis[sh::MaxCoefficients];
-        caps.CapVisibility(b.Theta, zh);
-        zh[0] = static_cast<float>(4.0 * sh::Pi) - zh[0]; // visibility -> cap (scaled ZH)
-        for (int l = 1; l < order; ++l)
-        {
-          zh[l] = -zh[l];
-        }
-        // The basis at b.Dir serves the cap and the averaged radiance; the
-        // dot product band by band (short independent sums).
-        sh::EvaluateBasis(order, b.Dir[0], b.Dir[1], b.Dir[2], basis);
-        float capWeight = 0.0f;
-        for (int l = 0; l < order; ++l)
-        {
-          float band = 0.0f;
-          for (int i = l * l; i < (l + 1) * (l + 1); ++i)
-          {
-            band += h[i] * basis[i];
-          }
-          capWeight += zh[l] * band;
-        }
-        weights[q] = capWeight;
-        if (averaged)
-        {
-          const float* channels[3] = { &lights.Response[0], &lights.Response[n2],
-            &lights.Response[2 * static_cast<std::size_t>(n2)] };
-          float kappa[3];
-          indirect.AveragedRadiancesFromBasis(b.Theta, basis, 3, channels, kappa);
-          for (int c = 0; c < 3; ++c)
-          {
-            kappas[c * W + q] = kappa[c];
-          }
-        }
-      }
-    }
+    sh::BatchIndirectWeights(caps, indirect, order, theta, dx, dy, dz, h, averaged ? 3 : 0,
+      lights.Response.data(), weights, kappas);
     for (int q = 0; q < lanes; ++q)
     {
       const SeenBlocker& b = seen[first + q];

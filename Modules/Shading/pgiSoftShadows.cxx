@@ -509,14 +509,21 @@ struct CosineFibonacci
   }
 };
 
+// Whether a ray along the unit w meets the sphere at offset e from its
+// origin (ee = |e|^2, rr = radius^2) ahead of it.
+inline bool RayMeetsOffsetSphere(const double e[3], double ee, double rr, const double w[3])
+{
+  const double along = e[0] * w[0] + e[1] * w[1] + e[2] * w[2];
+  return along > 0.0 && ee - along * along < rr;
+}
+
 // Whether the ray from p along the unit w meets the sphere (x, y, z, r)
 // ahead of p.
 bool RayMeetsSphere(const float p[3], const double w[3], float x, float y, float z, float r)
 {
   const double e[3] = { x - p[0], y - p[1], z - p[2] };
-  const double along = e[0] * w[0] + e[1] * w[1] + e[2] * w[2];
-  return along > 0.0 &&
-    e[0] * e[0] + e[1] * e[1] + e[2] * e[2] - along * along < static_cast<double>(r) * r;
+  return RayMeetsOffsetSphere(
+    e, e[0] * e[0] + e[1] * e[1] + e[2] * e[2], static_cast<double>(r) * r, w);
 }
 
 // The solid angles of `leaves` seen from p, summed.
@@ -633,12 +640,7 @@ double UnionCoveredShare(
       {
         continue;
       }
-      const double* w = &directionsAt[3 * k];
-      const double along = e[0] * w[0] + e[1] * w[1] + e[2] * w[2];
-      if (along > 0.0 && ee - along * along < rr)
-      {
-        hit[k] = 1;
-      }
+      hit[k] = RayMeetsOffsetSphere(e, ee, rr, &directionsAt[3 * k]) ? 1 : 0;
     }
   }
   int hits = 0;

@@ -7,6 +7,7 @@
 #include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"
 
+#include "pgiSHBasis.h"
 #include "pgiSHBatch.h"
 #include "pgiSHLightTables.h"
 #include "pgiSHTables.h"
@@ -754,8 +755,58 @@ void BatchIndirectWeights(const CapTables& caps, const IndirectTables& indirect,
   const float* theta, const float* dirX, const float* dirY, const float* dirZ, const float* h,
   int channels, const float* radiances, float* capWeight, float* kappa)
 {
-  HWY_DYNAMIC_DISPATCH(BatchIndirectWeightsImpl)
-  (caps, indirect, order, theta, dirX, dirY, dirZ, h, channels, radiances, capWeight, kappa);
+  if (BatchKernelsEnabled())
+  {
+    HWY_DYNAMIC_DISPATCH(BatchIndirectWeightsImpl)
+    (caps, indirect, order, theta, dirX, dirY, dirZ, h, channels, radiances, capWeight, kappa);
+    return;
+  }
+  // The scalar twin, lane by lane.
+  constexpr int W = BatchWidth;
+  const int n2 = NumCoefficients(order);
+  const float* rows[3] = { radiances, radiances + n2, radiances + 2 * n2 };
+  for (int q = 0; q < W; ++q)
+  {
+    if (!(theta[q] >= 0.0f))
+    {
+      capWeight[q] = 0.0f;
+      for (int c = 0; c < channels; ++c)
+      {
+        kappa[c * W + q] = 0.0f;
+      }
+      continue;
+    }
+    float zh[MaxOrder], basis[MaxCoefficients];
+    caps.CapVisibility(theta[q], zh);
+    zh[0] = static_cast<float>(4.0 * Pi) - zh[0]; // visibility -> cap (scaled ZH)
+    for (int l = 1; l < order; ++l)
+    {
+      zh[l] = -zh[l];
+    }
+    // The basis serves the cap and the averaged radiance; the dot product
+    // band by band (short independent sums).
+    EvaluateBasis(order, dirX[q], dirY[q], dirZ[q], basis);
+    float weight = 0.0f;
+    for (int l = 0; l < order; ++l)
+    {
+      float band = 0.0f;
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i)
+      {
+        band += h[i] * basis[i];
+      }
+      weight += zh[l] * band;
+    }
+    capWeight[q] = weight;
+    if (channels > 0)
+    {
+      float k[3];
+      indirect.AveragedRadiancesFromBasis(theta[q], basis, channels, rows, k);
+      for (int c = 0; c < channels; ++c)
+      {
+        kappa[c * W + q] = k[c];
+      }
+    }
+  }
 }
 
 void BatchExp(int order, const float* f, float* g, const ExpOptions& options, Status* status)

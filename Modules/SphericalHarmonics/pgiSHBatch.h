@@ -70,7 +70,8 @@ PROXYGISPHERICALHARMONICS_EXPORT void BatchAddCaps(const CapTables& tables, int 
  * and for each of `channels` radiance SH (order^2 floats each, one after the
  * other) kappa_c = IndirectTables::AveragedRadiances. h: the receiver's
  * DiffuseTransfer. Lanes with a negative theta get zeros. kappa: channels
- * rows of BatchWidth; channels 0 leaves it alone.
+ * (at most 3) rows of BatchWidth; channels 0 leaves it alone. With the
+ * batched kernels disabled, the scalar twin runs lane by lane.
  */
 PROXYGISPHERICALHARMONICS_EXPORT void BatchIndirectWeights(const CapTables& caps,
   const IndirectTables& indirect, int order, const float* theta, const float* dirX,

@@ -605,29 +605,6 @@ void IndirectTables::AveragedRadiancesFromBasis(
 {
   T zh[MaxOrder];
   this->AveragedIndirect(theta, zh);
-  if (count == 3)
-  {
-    // Colour: the channels' sums side by side (each in the order below).
-    const T *r0 = radiances[0], *r1 = radiances[1], *r2 = radiances[2];
-    T k0 = T(0), k1 = T(0), k2 = T(0);
-    for (int l = 0; l < this->Order; ++l)
-    {
-      T b0 = T(0), b1 = T(0), b2 = T(0);
-      for (int i = l * l; i < (l + 1) * (l + 1); ++i)
-      {
-        b0 += basis[i] * r0[i];
-        b1 += basis[i] * r1[i];
-        b2 += basis[i] * r2[i];
-      }
-      k0 += zh[l] * b0;
-      k1 += zh[l] * b1;
-      k2 += zh[l] * b2;
-    }
-    kappas[0] = k0;
-    kappas[1] = k1;
-    kappas[2] = k2;
-    return;
-  }
   for (int c = 0; c < count; ++c)
   {
     const T* radiance = radiances[c];

@@ -1,7 +1,8 @@
 // The batched SH kernels on every instruction set this CPU runs, against
 // their scalar twins lane by lane: the square, the summed rotated cap logs,
-// the averaged bounce's per-proxy weights, and the exp (HYB vectorised, the
-// other methods lane by lane), with non-finite and zero lanes mixed in.
+// the averaged bounce's per-proxy weights (and their scalar path), and the
+// exp (HYB vectorised, the other methods lane by lane), with non-finite and
+// zero lanes mixed in.
 // Agreement within 1e-5 of the vector's size; statuses equal.
 #include "pgiSHBasis.h"
 #include "pgiSHBatch.h"
@@ -196,11 +197,19 @@ int TestSHBatch(int, char*[])
           wx[6] = std::numeric_limits<float>::quiet_NaN(); // skipped: must not leak
           BatchIndirectWeights(
             tables, indirect, order, th, wx, wy, wz, h, 3, radiances, weights, kappas);
+          // With the kernels off, the scalar twin runs: held to the same.
+          alignas(64) float scalarWeights[W], scalarKappas[3 * W];
+          SetBatchKernelsEnabled(false);
+          BatchIndirectWeights(
+            tables, indirect, order, th, wx, wy, wz, h, 3, radiances, scalarWeights, scalarKappas);
+          SetBatchKernelsEnabled(true);
           for (int k = 0; k < W; ++k)
           {
             if (!(th[k] >= 0.0f))
             {
               PGI_CHECK(weights[k] == 0.0f && kappas[k] == 0.0f && kappas[2 * W + k] == 0.0f);
+              PGI_CHECK(scalarWeights[k] == 0.0f && scalarKappas[k] == 0.0f &&
+                scalarKappas[2 * W + k] == 0.0f);
               continue;
             }
             float zh[MaxOrder], cap[MaxCoefficients];
@@ -218,11 +227,13 @@ int TestSHBatch(int, char*[])
             indirect.AveragedRadiances(th[k], d, 3, channels, kappa);
             const double scale = std::max(1.0, double(std::fabs(weight)));
             worstWeights = std::max(worstWeights, std::fabs(weights[k] - weight) / scale);
+            worstWeights = std::max(worstWeights, std::fabs(scalarWeights[k] - weight) / scale);
             for (int c = 0; c < 3; ++c)
             {
-              worstWeights = std::max(worstWeights,
-                std::fabs(kappas[c * W + k] - kappa[c]) /
-                  std::max(1.0, double(std::fabs(kappa[c]))));
+              const double size = std::max(1.0, double(std::fabs(kappa[c])));
+              worstWeights = std::max(worstWeights, std::fabs(kappas[c * W + k] - kappa[c]) / size);
+              worstWeights =
+                std::max(worstWeights, std::fabs(scalarKappas[c * W + k] - kappa[c]) / size);
             }
           }
         }
