@@ -4,6 +4,8 @@
 #include "pgiEnvironmentShading.h"
 #include "pgiIndirectLight.h"
 #include "pgiSHBasis.h"
+#include "pgiSHBatch.h"
+#include "pgiSoftShadowsBatch.h"
 #include "vtkPGIGIBake.h"
 
 #include "vtkSMPThreadLocal.h"
@@ -24,33 +26,11 @@ float Dot(const float a[3], const float b[3])
 }
 
 // Directions per block of the products below.
-constexpr int DotLanes = 16;
+constexpr int DotLanes = sh::BatchWidth;
 
 int PaddedDirections(int count)
 {
   return (count + DotLanes - 1) / DotLanes * DotLanes;
-}
-
-// v[k] = sum_i g[i] basis[i * stride + k] for k < count (a multiple of
-// DotLanes), each sum in the order of i as a lone dot product takes it (the
-// same floats), the directions side by side: vectorised, no chain of
-// dependent additions.
-void DotEach(int coefficients, const float* g, const float* basis, int stride, int count, float* v)
-{
-  for (int k0 = 0; k0 < count; k0 += DotLanes)
-  {
-    float lanes[DotLanes] = {};
-    for (int i = 0; i < coefficients; ++i)
-    {
-      const float gi = g[i];
-      const float* row = basis + static_cast<std::size_t>(i) * stride + k0;
-      for (int k = 0; k < DotLanes; ++k)
-      {
-        lanes[k] += gi * row[k];
-      }
-    }
-    std::copy_n(lanes, DotLanes, v + k0);
-  }
 }
 
 // A direction's basis, stored coefficient-major.
@@ -357,12 +337,15 @@ void PlaneLightMap::SkyPastEdges(
       out[k] = lo[k] + t * (lo[9 + k] - lo[k]);
     }
   };
-  // V at the bins' rows, a block of DotLanes rows at a time as bins need them.
+  // The bins' stretches of heights that miss the extent and face n, in the
+  // order they are summed; then V at the rows they read, the blocks of
+  // DotLanes rows they need together; then the sum.
   static_assert(SkyBins * SkyRows % DotLanes == 0, "the sky's rows fill the products' blocks");
   constexpr int SkyStride = SkyBins * SkyRows;
-  float skyV[SkyStride];
-  bool skyDone[SkyStride / DotLanes] = {};
-  float sum[3] = { 0, 0, 0 };
+  int stretchBin[2 * SkyBins];
+  float stretchFrom[2 * SkyBins], stretchTo[2 * SkyBins];
+  int stretches = 0;
+  bool needed[SkyStride / DotLanes] = {};
   for (int b = 0; b < SkyBins; ++b)
   {
     const float c = this->SkyAxes[4 * b], sn = this->SkyAxes[4 * b + 1];
@@ -417,7 +400,6 @@ void PlaneLightMap::SkyPastEdges(
         count = 2;
       }
     }
-    const float* row = &this->SkyTable[9 * static_cast<std::size_t>(b) * Heights];
     for (int r = 0; r < count; ++r)
     {
       const float s0 = std::max(lo, ranges[2 * r]), s1 = std::min(hi, ranges[2 * r + 1]);
@@ -425,38 +407,65 @@ void PlaneLightMap::SkyPastEdges(
       {
         continue;
       }
-      float t0[9], t1[9];
-      at(row, s0, t0);
-      at(row, s1, t1);
-      float v = 1.0f;
-      if (g)
+      stretchBin[stretches] = b;
+      stretchFrom[stretches] = s0;
+      stretchTo[stretches] = s1;
+      ++stretches;
+    }
+  }
+  // V at the middle of a stretch's heights, linear between the two rows
+  // around it (the nearest row alone jumps as the receiver moves).
+  const auto rowsAround = [](int b, float s0, float s1, int& first, float& t)
+  {
+    const float middle =
+      std::min(static_cast<float>(SkyRows - 1), std::max(0.0f, 0.5f * (s0 + s1) * SkyRows - 0.5f));
+    const int k = std::min(SkyRows - 2, static_cast<int>(middle));
+    t = middle - static_cast<float>(k);
+    first = b * SkyRows + k;
+  };
+  float skyV[SkyStride];
+  if (g)
+  {
+    for (int e = 0; e < stretches; ++e)
+    {
+      int first = 0;
+      float t = 0.0f;
+      rowsAround(stretchBin[e], stretchFrom[e], stretchTo[e], first, t);
+      needed[first / DotLanes] = needed[(first + 1) / DotLanes] = true;
+    }
+    int blocks[SkyStride / DotLanes], count = 0;
+    for (int block = 0; block < SkyStride / DotLanes; ++block)
+    {
+      if (needed[block])
       {
-        // V at the middle of the heights, linear between the two rows
-        // around it (the nearest row alone jumps as the receiver moves).
-        const float middle = std::min(
-          static_cast<float>(SkyRows - 1), std::max(0.0f, 0.5f * (s0 + s1) * SkyRows - 0.5f));
-        const int k = std::min(SkyRows - 2, static_cast<int>(middle));
-        const float t = middle - static_cast<float>(k);
-        float rows[2];
-        for (int q = 0; q < 2; ++q)
-        {
-          const int at = b * SkyRows + k + q, block = at / DotLanes;
-          if (!skyDone[block])
-          {
-            DotEach(this->Coefficients, g, this->SkyBasis.data() + block * DotLanes, SkyStride,
-              DotLanes, skyV + block * DotLanes);
-            skyDone[block] = true;
-          }
-          rows[q] = std::min(1.0f, std::max(0.0f, skyV[at]));
-        }
-        v = rows[0] + t * (rows[1] - rows[0]);
+        blocks[count++] = block;
       }
-      for (int ch = 0; ch < 3; ++ch)
-      {
-        const float e = nl[0] * (t1[ch] - t0[ch]) + nl[1] * (t1[3 + ch] - t0[3 + ch]) +
-          nl[2] * (t1[6 + ch] - t0[6 + ch]);
-        sum[ch] += v * std::max(0.0f, e);
-      }
+    }
+    detail::DotBlocks(this->Coefficients, g, this->SkyBasis.data(), SkyStride, blocks, count, skyV);
+  }
+  float sum[3] = { 0, 0, 0 };
+  for (int e = 0; e < stretches; ++e)
+  {
+    const float* row = &this->SkyTable[9 * static_cast<std::size_t>(stretchBin[e]) * Heights];
+    const float s0 = stretchFrom[e], s1 = stretchTo[e];
+    float t0[9], t1[9];
+    at(row, s0, t0);
+    at(row, s1, t1);
+    float v = 1.0f;
+    if (g)
+    {
+      int first = 0;
+      float t = 0.0f;
+      rowsAround(stretchBin[e], s0, s1, first, t);
+      const float rows[2] = { std::min(1.0f, std::max(0.0f, skyV[first])),
+        std::min(1.0f, std::max(0.0f, skyV[first + 1])) };
+      v = rows[0] + t * (rows[1] - rows[0]);
+    }
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      const float e3 = nl[0] * (t1[ch] - t0[ch]) + nl[1] * (t1[3 + ch] - t0[3 + ch]) +
+        nl[2] * (t1[6 + ch] - t0[6 + ch]);
+      sum[ch] += v * std::max(0.0f, e3);
     }
   }
   for (int ch = 0; ch < 3; ++ch)
@@ -520,14 +529,19 @@ bool PlaneLightMap::Scale(
   {
     cosines[k] = Dot(n, &this->Directions[3 * k]);
   }
+  int blocks[MaxDirections / DotLanes], facing = 0;
   for (int k0 = 0; g && k0 < count; k0 += DotLanes)
   {
     const int end = std::min(count, k0 + DotLanes);
     if (std::any_of(cosines + k0, cosines + end, [](float c) { return c > 0.0f; }))
     {
-      DotEach(
-        this->Coefficients, g, this->Basis.data() + k0, this->DirectionStride, DotLanes, v + k0);
+      blocks[facing++] = k0 / DotLanes;
     }
+  }
+  if (facing > 0)
+  {
+    detail::DotBlocks(this->Coefficients, g, this->Basis.data(),
+      static_cast<std::size_t>(this->DirectionStride), blocks, facing, v);
   }
   for (int k = 0; k < count; ++k)
   {

@@ -9,6 +9,9 @@
 #include "pgiSHBatch.h"
 #include "pgiSoftShadowsBatch.h"
 
+#include <algorithm>
+#include <cstddef>
+
 HWY_BEFORE_NAMESPACE();
 namespace proxygi
 {
@@ -110,6 +113,49 @@ void BlockerLanesImpl(const float* lanes, const float* X, const float* Y, const 
   }
 }
 
+// DotBlocks: each sum in the order of i, a multiplication and an addition
+// per term (no fused multiply-adds, as the scalar loop rounds them), so the
+// lanes equal the scalar sums bit for bit; four vectors' sums side by side,
+// as one sum is a chain of dependent additions.
+void DotBlocksImpl(int coefficients, const float* g, const float* basis, std::size_t stride,
+  const int* blocks, int count, float* v)
+{
+  const D d;
+  const int lanes = static_cast<int>(hn::Lanes(d)), perBlock = W / lanes;
+  const int total = count * perBlock;
+  const auto offset = [&](int q)
+  { return static_cast<std::size_t>(blocks[q / perBlock]) * W + (q % perBlock) * lanes; };
+  int q = 0;
+  for (; q + 4 <= total; q += 4)
+  {
+    const std::size_t o0 = offset(q), o1 = offset(q + 1), o2 = offset(q + 2), o3 = offset(q + 3);
+    V s0 = hn::Zero(d), s1 = s0, s2 = s0, s3 = s0;
+    for (int i = 0; i < coefficients; ++i)
+    {
+      const V gi = hn::Set(d, g[i]);
+      const float* row = basis + i * stride;
+      s0 = hn::Add(s0, hn::Mul(gi, hn::LoadU(d, row + o0)));
+      s1 = hn::Add(s1, hn::Mul(gi, hn::LoadU(d, row + o1)));
+      s2 = hn::Add(s2, hn::Mul(gi, hn::LoadU(d, row + o2)));
+      s3 = hn::Add(s3, hn::Mul(gi, hn::LoadU(d, row + o3)));
+    }
+    hn::StoreU(s0, d, v + o0);
+    hn::StoreU(s1, d, v + o1);
+    hn::StoreU(s2, d, v + o2);
+    hn::StoreU(s3, d, v + o3);
+  }
+  for (; q < total; ++q)
+  {
+    const std::size_t o = offset(q);
+    V sum = hn::Zero(d);
+    for (int i = 0; i < coefficients; ++i)
+    {
+      sum = hn::Add(sum, hn::Mul(hn::Set(d, g[i]), hn::LoadU(d, basis + i * stride + o)));
+    }
+    hn::StoreU(sum, d, v + o);
+  }
+}
+
 } // namespace HWY_NAMESPACE
 } // namespace detail
 } // namespace proxygi
@@ -121,6 +167,7 @@ namespace proxygi
 namespace detail
 {
 HWY_EXPORT(BlockerLanesImpl);
+HWY_EXPORT(DotBlocksImpl);
 
 float BlockerAsin(float x)
 {
@@ -133,6 +180,30 @@ void BlockerLanes(const float* lanes, const float* X, const float* Y, const floa
 {
   HWY_DYNAMIC_DISPATCH(BlockerLanesImpl)
   (lanes, X, Y, Z, R, rows, sinMin, rules, theta, dx, dy, dz);
+}
+
+void DotBlocks(int coefficients, const float* g, const float* basis, std::size_t stride,
+  const int* blocks, int count, float* v)
+{
+  if (sh::BatchKernelsEnabled())
+  {
+    HWY_DYNAMIC_DISPATCH(DotBlocksImpl)(coefficients, g, basis, stride, blocks, count, v);
+    return;
+  }
+  for (int b = 0; b < count; ++b)
+  {
+    float* out = v + static_cast<std::size_t>(blocks[b]) * sh::BatchWidth;
+    std::fill_n(out, sh::BatchWidth, 0.0f);
+    for (int i = 0; i < coefficients; ++i)
+    {
+      const float gi = g[i];
+      const float* row = basis + i * stride + static_cast<std::size_t>(blocks[b]) * sh::BatchWidth;
+      for (int k = 0; k < sh::BatchWidth; ++k)
+      {
+        out[k] += gi * row[k];
+      }
+    }
+  }
 }
 } // namespace detail
 } // namespace proxygi

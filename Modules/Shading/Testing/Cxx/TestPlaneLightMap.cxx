@@ -9,6 +9,7 @@
 #include "pgiEnvironmentMap.h"
 #include "pgiPlaneLightMap.h"
 #include "pgiSHBasis.h"
+#include "pgiSHBatch.h"
 #include "pgiSHZonal.h"
 #include "pgiSoftShadows.h"
 #include "pgiTesting.h"
@@ -32,6 +33,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace proxygi;
@@ -172,8 +174,15 @@ int TestPlaneLightMap(int, char*[])
   // taken side by side: the same floats as one dot product per direction
   // (random g, V below 0 and above 1 clamped; slanted normals, so some
   // blocks of directions face away; 64 and 40 directions, the last block
-  // partly padding).
+  // partly padding), on every instruction set this CPU runs and with the
+  // batched kernels off.
+  std::vector<std::string> targets = sh::BatchTargets();
+  targets.push_back("kernels off");
+  for (const std::string& target : targets)
   {
+    const bool off = target == "kernels off";
+    sh::SetBatchKernelsEnabled(!off);
+    PGI_CHECK(off || sh::SetBatchTarget(target));
     Blockers b;
     const float origin[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
     b.AddPlane(origin, up);
@@ -226,12 +235,14 @@ int TestPlaneLightMap(int, char*[])
         equal += scale[0] == expected && scale[1] == expected && scale[2] == expected ? 1 : 0;
       }
     }
-    std::printf("visibility-weighted scale, directions side by side: %d of %d receivers equal "
-                "to the per-direction dot products\n",
-      equal, checked);
+    std::printf("visibility-weighted scale, directions side by side (%s): %d of %d receivers "
+                "equal to the per-direction dot products\n",
+      target.c_str(), equal, checked);
     PGI_CHECK(checked > 50);
     PGI_CHECK(equal == checked);
   }
+  sh::SetBatchKernelsEnabled(true);
+  PGI_CHECK(sh::SetBatchTarget(""));
   // A square ground of half size a under a receiver looking down from h:
   // the plane's share is the square's form factor, 4 F(a/h, a/h), and the
   // uniform sky of radiance 1 past its edges gives the rest.
@@ -374,6 +385,32 @@ int TestPlaneLightMap(int, char*[])
       lowest, highest, largest);
     PGI_CHECK(highest > lowest);
     PGI_BELOW(largest, 0.01 * (highest - lowest));
+    // The sky's V, its rows' products taken side by side: the same floats on
+    // every instruction set as with the batched kernels off.
+    int skyChecked = 0, skyEqual = 0;
+    for (int k = 0; k <= 600; k += 7)
+    {
+      const float p[3] = { 0.3f, -0.2f + 0.002f * static_cast<float>(k),
+        0.2f + 0.001f * static_cast<float>(k) };
+      const float n[3] = { 0.0f, 0.8f, -0.6f };
+      float scale[3], reference[3], gap[3];
+      sh::SetBatchKernelsEnabled(false);
+      map.Scale(p, n, scale, g.data(), reference);
+      sh::SetBatchKernelsEnabled(true);
+      for (const std::string& target : sh::BatchTargets())
+      {
+        PGI_CHECK(sh::SetBatchTarget(target));
+        map.Scale(p, n, scale, g.data(), gap);
+        ++skyChecked;
+        skyEqual +=
+          gap[0] == reference[0] && gap[1] == reference[1] && gap[2] == reference[2] ? 1 : 0;
+      }
+    }
+    PGI_CHECK(sh::SetBatchTarget(""));
+    std::printf("sky past the edges weighted by V: %d of %d equal to the scalar products\n",
+      skyEqual, skyChecked);
+    PGI_CHECK(skyChecked > 80);
+    PGI_CHECK(skyEqual == skyChecked);
   }
 
   // The filter: a ball (r = 1 at height 1.5, albedo 0.8) over a 4 x 4
