@@ -8,6 +8,7 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cmath>
@@ -357,37 +358,52 @@ void EnvironmentMap::ProjectSH(int order, double* red, double* green, double* bl
       }
     }
   }
-  std::vector<double> nodes, weights, basis(n2), zInt(n2), rowCos(3 * order), rowSin(3 * order);
+  // Each row's z integrals and phi sums on its own (rows in parallel), then
+  // the rows added in order: the same sums, in the same order, as one pass.
+  std::vector<double> nodes, weights;
   // The rule on [0, 1] once, mapped onto each row's z interval.
   sh::GaussLegendre(8, 0.0, 1.0, nodes, weights);
-  for (int j = 0; j < h; ++j)
-  {
-    // z integrals of y_l|m| at phi = 0 (carries K_lm, sqrt(2), sin^m theta).
-    const double z0 = std::cos(Pi * (j + 1) / h), z1 = std::cos(Pi * j / h);
-    std::fill(zInt.begin(), zInt.end(), 0.0);
-    for (std::size_t q = 0; q < nodes.size(); ++q)
+  const std::size_t perRow = static_cast<std::size_t>(n2) + 6 * static_cast<std::size_t>(order);
+  std::vector<double> rows(perRow * static_cast<std::size_t>(h), 0.0);
+  vtkSMPTools::For(0, h,
+    [&](vtkIdType first, vtkIdType last)
     {
-      const double z = z0 + (z1 - z0) * nodes[q], s = std::sqrt(std::max(0.0, 1.0 - z * z));
-      sh::EvaluateBasis(order, s, 0.0, z, basis.data());
-      for (int i = 0; i < n2; ++i)
+      std::vector<double> basis(n2);
+      for (vtkIdType j = first; j < last; ++j)
       {
-        zInt[i] += (z1 - z0) * weights[q] * basis[i];
-      }
-    }
-    std::fill(rowCos.begin(), rowCos.end(), 0.0);
-    std::fill(rowSin.begin(), rowSin.end(), 0.0);
-    for (int i = 0; i < w; ++i)
-    {
-      const float* rgb = &this->RGB[3 * (static_cast<std::size_t>(j) * w + i)];
-      for (int m = 0; m < order; ++m)
-      {
-        for (int c = 0; c < 3; ++c)
+        double* zInt = &rows[perRow * j];
+        double* rowCos = zInt + n2;
+        double* rowSin = rowCos + 3 * order;
+        // z integrals of y_l|m| at phi = 0 (carries K_lm, sqrt(2), sin^m theta).
+        const double z0 = std::cos(Pi * (j + 1) / h), z1 = std::cos(Pi * j / h);
+        for (std::size_t q = 0; q < nodes.size(); ++q)
         {
-          rowCos[c * order + m] += rgb[c] * cosInt[i * order + m];
-          rowSin[c * order + m] += rgb[c] * sinInt[i * order + m];
+          const double z = z0 + (z1 - z0) * nodes[q], s = std::sqrt(std::max(0.0, 1.0 - z * z));
+          sh::EvaluateBasis(order, s, 0.0, z, basis.data());
+          for (int i = 0; i < n2; ++i)
+          {
+            zInt[i] += (z1 - z0) * weights[q] * basis[i];
+          }
+        }
+        for (int i = 0; i < w; ++i)
+        {
+          const float* rgb = &this->RGB[3 * (static_cast<std::size_t>(j) * w + i)];
+          for (int m = 0; m < order; ++m)
+          {
+            for (int c = 0; c < 3; ++c)
+            {
+              rowCos[c * order + m] += rgb[c] * cosInt[i * order + m];
+              rowSin[c * order + m] += rgb[c] * sinInt[i * order + m];
+            }
+          }
         }
       }
-    }
+    });
+  for (int j = 0; j < h; ++j)
+  {
+    const double* zInt = &rows[perRow * j];
+    const double* rowCos = zInt + n2;
+    const double* rowSin = rowCos + 3 * order;
     for (int l = 0; l < order; ++l)
     {
       for (int m = -l; m <= l; ++m)

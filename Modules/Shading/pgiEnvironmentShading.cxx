@@ -68,11 +68,11 @@ EnvironmentShading::EnvironmentShading(
   // (M_L H)_k = sum_l M_kl H_l, summed over l in order as columns of M_L
   // scaled by H_l: the n2 sums run side by side (vectorised) instead of
   // one dependent chain each, with the same additions in the same order.
-  std::vector<double> columns(light.size());
+  this->Columns.resize(light.size());
   for (int c = 0; c < 3; ++c)
   {
     const double* m = &light[static_cast<std::size_t>(c) * n2 * n2];
-    double* t = &columns[static_cast<std::size_t>(c) * n2 * n2];
+    double* t = &this->Columns[static_cast<std::size_t>(c) * n2 * n2];
     for (int k = 0; k < n2; ++k)
     {
       for (int l = 0; l < n2; ++l)
@@ -81,37 +81,58 @@ EnvironmentShading::EnvironmentShading(
       }
     }
   }
-  // Rows are independent: one thread each (a first update waits on this).
-  vtkSMPTools::For(0, this->Height + 1,
-    [&](int first, int last)
+  // Rows are filled when first read: a ground's receivers read one row, a
+  // plane map reads this table at the plane's normal only.
+  this->RowsBuilt.reset(new std::once_flag[this->Height + 1]);
+}
+
+void EnvironmentShading::BuildRow(int j) const
+{
+  const int n2 = sh::NumCoefficients(this->Order);
+  double h[sh::MaxCoefficients], sum[sh::MaxCoefficients];
+  const double theta = sh::Pi * j / this->Height;
+  for (int i = 0; i <= this->Width; ++i)
+  {
+    const double phi = 2 * sh::Pi * i / this->Width;
+    sh::DiffuseTransfer(this->Order, std::sin(theta) * std::cos(phi),
+      std::sin(theta) * std::sin(phi), std::cos(theta), h);
+    for (int c = 0; c < 3; ++c)
     {
-      std::vector<double> h(n2), sum(n2);
+      const double* t = &this->Columns[static_cast<std::size_t>(c) * n2 * n2];
+      std::fill_n(sum, n2, 0.0);
+      for (int l = 0; l < n2; ++l)
+      {
+        const double hl = h[l];
+        const double* column = t + static_cast<std::size_t>(l) * n2;
+        for (int k = 0; k < n2; ++k)
+        {
+          sum[k] += column[k] * hl;
+        }
+      }
+      std::copy_n(sum, n2,
+        this->LHTable.begin() +
+          ((static_cast<std::size_t>(j) * (this->Width + 1) + i) * 3 + c) * n2);
+    }
+  }
+}
+
+void EnvironmentShading::EnsureRow(int j) const
+{
+  std::call_once(this->RowsBuilt[j], [this, j]() { this->BuildRow(j); });
+}
+
+void EnvironmentShading::BuildTable() const
+{
+  if (this->ShadingPath != Path::Table)
+  {
+    return;
+  }
+  vtkSMPTools::For(0, this->Height + 1,
+    [this](int first, int last)
+    {
       for (int j = first; j < last; ++j)
       {
-        const double theta = sh::Pi * j / this->Height;
-        for (int i = 0; i <= this->Width; ++i)
-        {
-          const double phi = 2 * sh::Pi * i / this->Width;
-          sh::DiffuseTransfer(order, std::sin(theta) * std::cos(phi),
-            std::sin(theta) * std::sin(phi), std::cos(theta), h.data());
-          for (int c = 0; c < 3; ++c)
-          {
-            const double* t = &columns[static_cast<std::size_t>(c) * n2 * n2];
-            std::fill(sum.begin(), sum.end(), 0.0);
-            for (int l = 0; l < n2; ++l)
-            {
-              const double hl = h[l];
-              const double* column = t + static_cast<std::size_t>(l) * n2;
-              for (int k = 0; k < n2; ++k)
-              {
-                sum[k] += column[k] * hl;
-              }
-            }
-            std::copy(sum.begin(), sum.end(),
-              this->LHTable.begin() +
-                ((static_cast<std::size_t>(j) * (this->Width + 1) + i) * 3 + c) * n2);
-          }
-        }
+        this->EnsureRow(j);
       }
     });
 }
@@ -153,6 +174,8 @@ void EnvironmentShading::Shade(const float n[3], const float* g, float rgb[3]) c
   const float fu = std::min(1.0f, std::max(0.0f, u - i)),
               fv = std::min(1.0f, std::max(0.0f, v - j));
   const float w[4] = { (1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv };
+  this->EnsureRow(j);
+  this->EnsureRow(j + 1);
   const std::size_t stride = static_cast<std::size_t>(this->Width) + 1;
   const std::size_t corners[4] = { j * stride + i, j * stride + i + 1, (j + 1) * stride + i,
     (j + 1) * stride + i + 1 };

@@ -5,8 +5,9 @@
  *
  * Two paths, as the paper describes:
  *  - Table (fixed lighting): the vectors LH(N) = L * H(N) tabulated once per
- *    lighting on a lat-long grid of normals and interpolated bilinearly;
- *    per receiver it costs n^2 (times 4 for the interpolation) per channel.
+ *    lighting on a lat-long grid of normals (each row of the grid when a
+ *    normal first needs it) and interpolated bilinearly; per receiver it
+ *    costs n^2 (times 4 for the interpolation) per channel.
  *  - ProductMatrix (lighting that changes every frame): M_L once per frame,
  *    then (M_L g) . H(N) per receiver, n^4 per channel.
  * Both read the same L; a test checks they agree. Ringing in g can make the
@@ -18,6 +19,8 @@
 
 #include "ProxyGIShadingModule.h"
 
+#include <memory>
+#include <mutex>
 #include <vector>
 
 namespace proxygi
@@ -44,13 +47,22 @@ public:
 
   /// The same without shadows (g = 1), exact.
   void ShadeUnshadowed(const float n[3], float rgb[3]) const;
+  /// The Table path fills each row of its table when Shade first reads it
+  /// (thread-safe); this fills every row now, in parallel.
+  void BuildTable() const;
 
 private:
   int Order, Width, Height;
   Path ShadingPath;
-  std::vector<float> Light;   // 3 x n^2
-  std::vector<float> Matrix;  // 3 x n^2 x n^2 (ProductMatrix path)
-  std::vector<float> LHTable; // Height x Width x 3 x n^2 (Table path)
+  std::vector<float> Light;  // 3 x n^2
+  std::vector<float> Matrix; // 3 x n^2 x n^2 (ProductMatrix path)
+  // (Height + 1) x (Width + 1) x 3 x n^2 (Table path), row j filled by the
+  // first EnsureRow(j) from the columns of M_L (3 x n^2 x n^2).
+  mutable std::vector<float> LHTable;
+  std::vector<double> Columns;
+  std::unique_ptr<std::once_flag[]> RowsBuilt;
+  void BuildRow(int j) const;
+  void EnsureRow(int j) const;
 };
 
 class EnvironmentMap;

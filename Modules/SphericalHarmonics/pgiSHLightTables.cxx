@@ -4,6 +4,8 @@
 #include "pgiSHRotation.h"
 #include "pgiSHZonal.h"
 
+#include "vtkSMPTools.h"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -527,13 +529,18 @@ IndirectTables::IndirectTables(int order, int resolution, int fitDegree)
   this->D.resize(resolution * order);
   this->W.resize(resolution * order);
   this->M.resize(resolution * mSize);
-  for (int i = 0; i < resolution; ++i)
-  {
-    const double theta = MaxAngle * i / (resolution - 1);
-    AveragedIndirectZonal(order, theta, &this->D[i * order]);
-    SphericalLightWeightZonal(order, theta, &this->W[i * order]);
-    ExactIndirectBlocks(order, theta, &this->M[i * mSize]);
-  }
+  // The angles are independent: in parallel (a first update waits on this).
+  vtkSMPTools::For(0, resolution,
+    [&](int first, int last)
+    {
+      for (int i = first; i < last; ++i)
+      {
+        const double theta = MaxAngle * i / (resolution - 1);
+        AveragedIndirectZonal(order, theta, &this->D[i * order]);
+        SphericalLightWeightZonal(order, theta, &this->W[i * order]);
+        ExactIndirectBlocks(order, theta, &this->M[i * mSize]);
+      }
+    });
   this->DF.assign(this->D.begin(), this->D.end());
   this->WF.assign(this->W.begin(), this->W.end());
   this->MF.assign(this->M.begin(), this->M.end());
@@ -543,21 +550,25 @@ IndirectTables::IndirectTables(int order, int resolution, int fitDegree)
   const int samples = 1024, terms = fitDegree + 1;
   Eigen::MatrixXd vandermonde(samples, terms);
   Eigen::MatrixXd values(samples, order);
-  for (int k = 0; k < samples; ++k)
-  {
-    const double alpha = static_cast<double>(k) / (samples - 1);
-    double zh[MaxOrder];
-    AveragedIndirectZonal(order, std::asin(alpha), zh);
-    double power = 1.0;
-    for (int p = 0; p < terms; ++p, power *= alpha)
+  vtkSMPTools::For(0, samples,
+    [&](int first, int last)
     {
-      vandermonde(k, p) = power;
-    }
-    for (int l = 0; l < order; ++l)
-    {
-      values(k, l) = zh[l];
-    }
-  }
+      for (int k = first; k < last; ++k)
+      {
+        const double alpha = static_cast<double>(k) / (samples - 1);
+        double zh[MaxOrder];
+        AveragedIndirectZonal(order, std::asin(alpha), zh);
+        double power = 1.0;
+        for (int p = 0; p < terms; ++p, power *= alpha)
+        {
+          vandermonde(k, p) = power;
+        }
+        for (int l = 0; l < order; ++l)
+        {
+          values(k, l) = zh[l];
+        }
+      }
+    });
   const Eigen::MatrixXd coefficients = vandermonde.colPivHouseholderQr().solve(values);
   const Eigen::MatrixXd fitted = vandermonde * coefficients;
   this->Fit.resize(order * terms);

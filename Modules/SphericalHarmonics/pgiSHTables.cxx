@@ -1,6 +1,9 @@
 #include "pgiSHTables.h"
 
+#include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
+
+#include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <array>
@@ -43,18 +46,25 @@ CapTables::CapTables(int order, int resolution, const LogOptions& log)
   this->ThetaScale = (resolution - 1) / MaxAngle;
   this->Visibility.resize(resolution * order);
   this->LogD.resize(resolution * order);
-  double zv[MaxOrder], zf[MaxOrder];
-  for (int i = 0; i < resolution; ++i)
-  {
-    const double theta = MaxAngle * i / (resolution - 1);
-    CapVisibilityZonal(order, theta, zv);
-    CapLogZonal(order, theta, log, zf);
-    for (int l = 0; l < order; ++l)
+  // Each angle's cap is its own eigen-inversion: the angles in parallel
+  // (a process's first update waits on these tables).
+  TripleProduct::Get(order);
+  vtkSMPTools::For(0, resolution,
+    [&](int first, int last)
     {
-      this->Visibility[i * order + l] = zv[l] * ZonalScale(l);
-      this->LogD[i * order + l] = zf[l] * ZonalScale(l);
-    }
-  }
+      double zv[MaxOrder], zf[MaxOrder];
+      for (int i = first; i < last; ++i)
+      {
+        const double theta = MaxAngle * i / (resolution - 1);
+        CapVisibilityZonal(order, theta, zv);
+        CapLogZonal(order, theta, log, zf);
+        for (int l = 0; l < order; ++l)
+        {
+          this->Visibility[i * order + l] = zv[l] * ZonalScale(l);
+          this->LogD[i * order + l] = zf[l] * ZonalScale(l);
+        }
+      }
+    });
   this->VisibilityF.assign(this->Visibility.begin(), this->Visibility.end());
   this->LogF.assign(this->LogD.begin(), this->LogD.end());
   const int stride = this->GetLogBandStride();
@@ -69,12 +79,23 @@ CapTables::CapTables(int order, int resolution, const LogOptions& log)
 
   // Optimal linear fit (eq. 24) on caps sampled finer than the output grid.
   const int fitSamples = 4 * resolution;
+  std::vector<double> sampled(2 * static_cast<std::size_t>(fitSamples) * order);
+  vtkSMPTools::For(1, fitSamples,
+    [&](int first, int last)
+    {
+      for (int i = first; i < last; ++i)
+      {
+        const double theta = MaxAngle * i / (fitSamples - 1);
+        double* zv = &sampled[2 * static_cast<std::size_t>(i) * order];
+        CapVisibilityZonal(order, theta, zv);
+        CapLogZonal(order, theta, log, zv + order);
+      }
+    });
   std::vector<double> xs(1, 0.0), as(1, 1.0), bs(1, 1.0);
   for (int i = 1; i < fitSamples; ++i)
   {
-    const double theta = MaxAngle * i / (fitSamples - 1);
-    CapVisibilityZonal(order, theta, zv);
-    CapLogZonal(order, theta, log, zf);
+    const double* zv = &sampled[2 * static_cast<std::size_t>(i) * order];
+    const double* zf = zv + order;
     // ZH vectors: the dot products over m reduce to l sums.
     const double dc = std::exp(-zf[0] / SqrtFourPi);
     double fHatSq = 0.0, gDotF = 0.0;
