@@ -68,6 +68,7 @@ void PlaneLightMap::Layout(const Blockers& blockers, int plane,
   this->Coefficients = order * order;
   this->DirectionStride = PaddedDirections(count);
   this->Basis.assign(static_cast<std::size_t>(this->Coefficients) * this->DirectionStride, 0.0f);
+  this->PaddedSteps.assign(2 * static_cast<std::size_t>(this->DirectionStride), 0.0f);
   const double golden = (1.0 + std::sqrt(5.0)) / 2.0, pi = 3.14159265358979323846;
   for (int k = 0; k < count; ++k)
   {
@@ -80,6 +81,8 @@ void PlaneLightMap::Layout(const Blockers& blockers, int plane,
     }
     this->StepU[k] = static_cast<float>(a / down);
     this->StepV[k] = static_cast<float>(b / down);
+    this->PaddedSteps[k] = this->StepU[k];
+    this->PaddedSteps[this->DirectionStride + k] = this->StepV[k];
     if (order > 0)
     {
       StoreBasis(order, &this->Directions[3 * k], this->Basis.data(), this->DirectionStride, k);
@@ -529,21 +532,57 @@ bool PlaneLightMap::Scale(
   {
     cosines[k] = Dot(n, &this->Directions[3 * k]);
   }
+  std::fill(cosines + count, cosines + this->DirectionStride, 0.0f);
   int blocks[MaxDirections / DotLanes], facing = 0;
-  for (int k0 = 0; g && k0 < count; k0 += DotLanes)
+  for (int k0 = 0; k0 < count; k0 += DotLanes)
   {
-    const int end = std::min(count, k0 + DotLanes);
-    if (std::any_of(cosines + k0, cosines + end, [](float c) { return c > 0.0f; }))
+    if (std::any_of(cosines + k0, cosines + k0 + DotLanes, [](float c) { return c > 0.0f; }))
     {
       blocks[facing++] = k0 / DotLanes;
     }
   }
-  if (facing > 0)
+  if (g && facing > 0)
   {
     detail::DotBlocks(this->Coefficients, g, this->Basis.data(),
       static_cast<std::size_t>(this->DirectionStride), blocks, facing, v);
   }
-  for (int k = 0; k < count; ++k)
+  if (sh::BatchKernelsEnabled())
+  {
+    // The terms side by side, then summed in the scalar loop's order (the
+    // directions it skips add zeros).
+    detail::PlaneLookUps in;
+    in.Cosines = cosines;
+    in.V = g ? v : nullptr;
+    in.StepU = this->PaddedSteps.data();
+    in.StepV = this->PaddedSteps.data() + this->DirectionStride;
+    in.X = x;
+    in.Y = y;
+    in.H = h;
+    in.FU = fu;
+    in.FV = fv;
+    in.HU = hu;
+    in.Bounded = this->Bounded;
+    std::copy_n(this->Dual1, 2, in.Dual1);
+    std::copy_n(this->Dual2, 2, in.Dual2);
+    // A grid of one row or column has no cell: s is 1 everywhere.
+    in.Grid = empty || this->Columns < 2 || this->Rows < 2 ? nullptr : this->S.data();
+    in.Columns = this->Columns;
+    in.Rows = this->Rows;
+    float w[MaxDirections], terms[3 * MaxDirections];
+    detail::PlaneTerms(in, blocks, facing, w, terms, MaxDirections);
+    for (int b = 0; b < facing; ++b)
+    {
+      for (int k = blocks[b] * DotLanes; k < (blocks[b] + 1) * DotLanes; ++k)
+      {
+        weights += w[k];
+        for (int ch = 0; ch < 3; ++ch)
+        {
+          sum[ch] += terms[ch * MaxDirections + k];
+        }
+      }
+    }
+  }
+  for (int k = 0; !sh::BatchKernelsEnabled() && k < count; ++k)
   {
     const float c = cosines[k];
     if (!(c > 0.0f))

@@ -163,6 +163,9 @@ private:
   // Per direction: the world direction and its step on the plane per unit
   // height, (w.U, w.V) / (-w.m).
   std::vector<float> Directions, StepU, StepV;
+  // StepU then StepV, each padded with zeros to DirectionStride (the
+  // batched terms read whole blocks).
+  std::vector<float> PaddedSteps;
   int Coefficients = 0;
   // The basis at the directions, coefficient-major: coefficient i of
   // direction k at i * DirectionStride + k (the stride a multiple of

@@ -156,6 +156,73 @@ void DotBlocksImpl(int coefficients, const float* g, const float* basis, std::si
   }
 }
 
+// PlaneTerms: Scale's per-direction terms, every lane's case computed and
+// selected; the look-ups of s gathered. Each operation is the scalar
+// loop's, in its order (no fused multiply-adds).
+void PlaneTermsImpl(const PlaneLookUps& in, const int* blocks, int count, float* weights,
+  float* terms, std::size_t stride)
+{
+  const D d;
+  const hn::RebindToSigned<D> di;
+  const int lanes = static_cast<int>(hn::Lanes(d)), perBlock = W / lanes;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const V x = hn::Set(d, in.X), y = hn::Set(d, in.Y), h = hn::Set(d, in.H);
+  const V fu0 = hn::Set(d, in.FU), fv0 = hn::Set(d, in.FV), hu = hn::Set(d, in.HU);
+  const V d10 = hn::Set(d, in.Dual1[0]), d11 = hn::Set(d, in.Dual1[1]),
+          d20 = hn::Set(d, in.Dual2[0]), d21 = hn::Set(d, in.Dual2[1]);
+  const V lastColumn = hn::Set(d, static_cast<float>(in.Columns - 1)),
+          lastRow = hn::Set(d, static_cast<float>(in.Rows - 1));
+  const auto columns = hn::Set(di, in.Columns), three = hn::Set(di, 3);
+  for (int q = 0; q < count * perBlock; ++q)
+  {
+    const std::size_t o =
+      static_cast<std::size_t>(blocks[q / perBlock]) * W + (q % perBlock) * lanes;
+    const V c = hn::LoadU(d, in.Cosines + o);
+    const auto facing = hn::Gt(c, zero);
+    hn::StoreU(hn::IfThenElseZero(facing, c), d, weights + o);
+    V seen = c;
+    if (in.V)
+    {
+      seen = hn::Mul(seen, hn::Min(hn::Max(hn::LoadU(d, in.V + o), zero), one));
+    }
+    const V su = hn::LoadU(d, in.StepU + o), sv = hn::LoadU(d, in.StepV + o);
+    auto lit = facing;
+    if (in.Bounded)
+    {
+      const V px = hn::Add(x, hn::Mul(h, su)), py = hn::Add(y, hn::Mul(h, sv));
+      const V a = hn::Add(hn::Mul(px, d10), hn::Mul(py, d11));
+      const V b = hn::Add(hn::Mul(px, d20), hn::Mul(py, d21));
+      lit = hn::And(lit, hn::And(hn::Le(hn::Abs(a), one), hn::Le(hn::Abs(b), one)));
+    }
+    V s[3] = { one, one, one };
+    if (in.Grid)
+    {
+      const V fu = hn::Add(fu0, hn::Mul(hu, su)), fv = hn::Add(fv0, hn::Mul(hu, sv));
+      const auto inside = hn::And(hn::And(hn::Ge(fu, zero), hn::Ge(fv, zero)),
+        hn::And(hn::Lt(fu, lastColumn), hn::Lt(fv, lastRow)));
+      // Lanes off the grid read the first point (their s is 1).
+      const V u = hn::IfThenElseZero(inside, fu), v = hn::IfThenElseZero(inside, fv);
+      const auto i = hn::ConvertTo(di, u), j = hn::ConvertTo(di, v);
+      const V a = hn::Sub(u, hn::ConvertTo(d, i)), b = hn::Sub(v, hn::ConvertTo(d, j));
+      const auto base = hn::Mul(hn::Add(hn::Mul(j, columns), i), three);
+      const auto above = hn::Add(base, hn::Mul(columns, three));
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        const float* grid = in.Grid + ch;
+        const V p00 = hn::GatherIndex(d, grid, base), p10 = hn::GatherIndex(d, grid + 3, base);
+        const V p01 = hn::GatherIndex(d, grid, above), p11 = hn::GatherIndex(d, grid + 3, above);
+        const V bottom = hn::Add(p00, hn::Mul(a, hn::Sub(p10, p00)));
+        const V top = hn::Add(p01, hn::Mul(a, hn::Sub(p11, p01)));
+        s[ch] = hn::IfThenElse(inside, hn::Add(bottom, hn::Mul(b, hn::Sub(top, bottom))), one);
+      }
+    }
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      hn::StoreU(hn::IfThenElseZero(lit, hn::Mul(seen, s[ch])), d, terms + ch * stride + o);
+    }
+  }
+}
+
 } // namespace HWY_NAMESPACE
 } // namespace detail
 } // namespace proxygi
@@ -168,6 +235,7 @@ namespace detail
 {
 HWY_EXPORT(BlockerLanesImpl);
 HWY_EXPORT(DotBlocksImpl);
+HWY_EXPORT(PlaneTermsImpl);
 
 float BlockerAsin(float x)
 {
@@ -204,6 +272,12 @@ void DotBlocks(int coefficients, const float* g, const float* basis, std::size_t
       }
     }
   }
+}
+
+void PlaneTerms(const PlaneLookUps& in, const int* blocks, int count, float* weights, float* terms,
+  std::size_t stride)
+{
+  HWY_DYNAMIC_DISPATCH(PlaneTermsImpl)(in, blocks, count, weights, terms, stride);
 }
 } // namespace detail
 } // namespace proxygi

@@ -36,6 +36,30 @@ float BlockerAsin(float x);
 /// disabled). The other entries of v are left alone.
 void DotBlocks(int coefficients, const float* g, const float* basis, std::size_t stride,
   const int* blocks, int count, float* v);
+
+/// What PlaneLightMap::Scale reads per look-up direction (arrays padded to
+/// whole blocks of sh::BatchWidth) and per receiver.
+struct PlaneLookUps
+{
+  const float* Cosines = nullptr; ///< n . w (0 past the last direction)
+  const float* V = nullptr;       ///< the visibility at w, or null (V = 1)
+  const float* StepU = nullptr;   ///< the steps on the plane per unit height
+  const float* StepV = nullptr;
+  float X = 0, Y = 0, H = 0;    ///< the receiver's foot and height (plane units)
+  float FU = 0, FV = 0, HU = 0; ///< the same in grid cells
+  bool Bounded = false;
+  float Dual1[2] = { 0, 0 }, Dual2[2] = { 0, 0 };
+  const float* Grid = nullptr; ///< s, RGB per grid point; null: s = 1
+  int Columns = 0, Rows = 0;
+};
+
+/// Per direction j of the blocks listed (as DotBlocks): weights[j] = n . w
+/// where it is positive, else 0; terms[c * stride + j] = that cosine times
+/// V clamped to [0, 1] times s's channel c (bilinear; 1 off the grid) where
+/// the direction meets the plane on its extent, else 0: Scale's terms, each
+/// rounded as Scale's scalar loop rounds it.
+void PlaneTerms(const PlaneLookUps& in, const int* blocks, int count, float* weights, float* terms,
+  std::size_t stride);
 } // namespace detail
 } // namespace proxygi
 

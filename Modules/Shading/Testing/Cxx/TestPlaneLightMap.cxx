@@ -243,6 +243,73 @@ int TestPlaneLightMap(int, char*[])
   }
   sh::SetBatchKernelsEnabled(true);
   PGI_CHECK(sh::SetBatchTarget(""));
+  // Scale's terms side by side (the look-ups of s gathered, the extent and
+  // the grid's edges selected per lane): the same floats on every target as
+  // the scalar loop with the kernels off, with random s in [0, 1], bounded
+  // and unbounded grounds, receivers over the grid, past its edges and far
+  // off it, facing every way, with and without V, 64 and 40 directions.
+  {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+    const float halfEdges[6] = { 1.2f, 0.3f, 0, -0.2f, 0.9f, 0 };
+    int checked = 0, equal = 0, partial = 0;
+    for (const float* edges : { static_cast<const float*>(nullptr), halfEdges })
+    {
+      const Blockers b = Ground(edges);
+      for (int directions : { 64, 40 })
+      {
+        PlaneLightMap map;
+        map.Layout(b, 0, {}, 48, directions, 4);
+        for (int i = 0; i < map.GetNumberOfPoints(); ++i)
+        {
+          for (int ch = 0; ch < 3; ++ch)
+          {
+            map.Scales()[3 * i + ch] = 0.5f + 0.5f * uniform(random);
+          }
+        }
+        for (int trial = 0; trial < 60; ++trial)
+        {
+          const float spread = trial % 3 == 0 ? 6.0f : 1.5f;
+          const float p[3] = { spread * uniform(random), spread * uniform(random),
+            0.05f + 1.5f * std::abs(uniform(random)) };
+          float n[3] = { uniform(random), uniform(random), uniform(random) };
+          const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          for (float& x : n)
+          {
+            x /= length;
+          }
+          float g[16];
+          for (float& x : g)
+          {
+            x = 0.4f * uniform(random);
+          }
+          g[0] = 2.5f;
+          const float* gs = trial % 2 ? g : nullptr;
+          float reference[3], scale[3];
+          sh::SetBatchKernelsEnabled(false);
+          const bool seen = map.Scale(p, n, reference, gs);
+          sh::SetBatchKernelsEnabled(true);
+          partial += seen && reference[0] > 0.0f && reference[0] < 1.0f ? 1 : 0;
+          for (const std::string& target : sh::BatchTargets())
+          {
+            PGI_CHECK(sh::SetBatchTarget(target));
+            ++checked;
+            equal += map.Scale(p, n, scale, gs) == seen && scale[0] == reference[0] &&
+                scale[1] == reference[1] && scale[2] == reference[2]
+              ? 1
+              : 0;
+          }
+        }
+      }
+    }
+    PGI_CHECK(sh::SetBatchTarget(""));
+    std::printf("plane scale's terms side by side: %d of %d equal to the scalar loop (%d "
+                "receivers partly shadowed)\n",
+      equal, checked, partial);
+    PGI_CHECK(checked > 200);
+    PGI_CHECK(partial > 100);
+    PGI_CHECK(equal == checked);
+  }
   // A square ground of half size a under a receiver looking down from h:
   // the plane's share is the square's form factor, 4 F(a/h, a/h), and the
   // uniform sky of radiance 1 past its edges gives the rest.
