@@ -228,7 +228,10 @@ void PlaneLightMap::SetSky(const EnvironmentMap& map)
     const float c = std::cos(phi), sn = std::sin(phi);
     const float axes[4] = { c, sn, c * this->Dual1[0] + sn * this->Dual1[1],
       c * this->Dual2[0] + sn * this->Dual2[1] };
-    std::copy_n(axes, 4, &this->SkyAxes[4 * b]);
+    for (int k = 0; k < 4; ++k)
+    {
+      this->SkyAxes[k * SkyBins + b] = axes[k];
+    }
   }
   SkyKey key;
   key.Texels = map.GetRGB().data();
@@ -349,9 +352,28 @@ void PlaneLightMap::SkyPastEdges(
   float stretchFrom[2 * SkyBins], stretchTo[2 * SkyBins];
   int stretches = 0;
   bool needed[SkyStride / DotLanes] = {};
-  for (int b = 0; b < SkyBins; ++b)
+  if (sh::BatchKernelsEnabled())
   {
-    const float c = this->SkyAxes[4 * b], sn = this->SkyAxes[4 * b + 1];
+    static_assert(SkyBins % sh::BatchWidth == 0, "the bins fill the batches");
+    float from[2 * SkyBins], to[2 * SkyBins];
+    detail::SkyStretches(this->SkyAxes.data(), SkyBins, nl, a1, a2, h, from, to);
+    for (int b = 0; b < SkyBins; ++b)
+    {
+      for (int r = 0; r < 2; ++r)
+      {
+        if (to[r * SkyBins + b] > from[r * SkyBins + b])
+        {
+          stretchBin[stretches] = b;
+          stretchFrom[stretches] = from[r * SkyBins + b];
+          stretchTo[stretches] = to[r * SkyBins + b];
+          ++stretches;
+        }
+      }
+    }
+  }
+  for (int b = 0; !sh::BatchKernelsEnabled() && b < SkyBins; ++b)
+  {
+    const float c = this->SkyAxes[b], sn = this->SkyAxes[SkyBins + b];
     // Where n.w > 0 along the bin's centre: n.w = A cos e - m sin e changes
     // sign at most once over the quarter turn from the horizon down.
     const float along = nl[0] * c + nl[1] * sn, m = nl[2];
@@ -369,7 +391,7 @@ void PlaneLightMap::SkyPastEdges(
     float in = 0.0f, out = big;
     for (int q = 0; q < 2; ++q)
     {
-      const float a = q == 0 ? a1 : a2, da = this->SkyAxes[4 * b + 2 + q];
+      const float a = q == 0 ? a1 : a2, da = this->SkyAxes[(2 + q) * SkyBins + b];
       if (da == 0.0f)
       {
         if (std::abs(a) > 1.0f)

@@ -10,7 +10,9 @@
 #include "pgiSoftShadowsBatch.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 
 HWY_BEFORE_NAMESPACE();
 namespace proxygi
@@ -223,6 +225,69 @@ void PlaneTermsImpl(const PlaneLookUps& in, const int* blocks, int count, float*
   }
 }
 
+// SkyStretches: every branch of the scalar loop per lane, selected; its
+// std::min and std::max as the comparisons they are, so that signed zeros
+// come out as the scalar's.
+void SkyStretchesImpl(const float* axes, int bins, const float normal[3], float a1, float a2,
+  float h, float* from, float* to)
+{
+  const D d;
+  const int lanes = static_cast<int>(hn::Lanes(d));
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f), minusOne = hn::Set(d, -1.0f),
+          big = hn::Set(d, std::numeric_limits<float>::max());
+  const V n0 = hn::Set(d, normal[0]), n1 = hn::Set(d, normal[1]), m = hn::Set(d, normal[2]);
+  const V hv = hn::Set(d, h), h2 = hn::Mul(hv, hv);
+  const bool atNadir = normal[2] < 0.0f;
+  const auto smaller = [](V a, V b) { return hn::IfThenElse(hn::Lt(b, a), b, a); }; // std::min(a, b)
+  const auto larger = [](V a, V b) { return hn::IfThenElse(hn::Lt(a, b), b, a); };  // std::max(a, b)
+  for (int k = 0; k < bins; k += lanes)
+  {
+    const V c = hn::LoadU(d, axes + k), sn = hn::LoadU(d, axes + bins + k);
+    const V along = hn::Add(hn::Mul(n0, c), hn::Mul(n1, sn));
+    const auto atHorizon = hn::Gt(along, zero);
+    const auto any = atNadir ? hn::Eq(zero, zero) : atHorizon;
+    // Where n.w > 0 changes sign: the heights above it or below it.
+    const V turn =
+      hn::Div(hn::Abs(along), hn::Sqrt(hn::Add(hn::Mul(along, along), hn::Mul(m, m))));
+    V lo = zero, hi = one;
+    if (atNadir)
+    {
+      lo = hn::IfThenElse(atHorizon, zero, turn);
+    }
+    else
+    {
+      hi = hn::IfThenElse(atHorizon, turn, one);
+    }
+    V in = zero, out = big;
+    for (int q = 0; q < 2; ++q)
+    {
+      const V a = hn::Set(d, q == 0 ? a1 : a2), da = hn::LoadU(d, axes + (2 + q) * bins + k);
+      const auto flat = hn::Eq(da, zero);
+      const V safe = hn::IfThenElse(flat, one, da);
+      const V t1 = hn::Div(hn::Sub(minusOne, a), safe), t2 = hn::Div(hn::Sub(one, a), safe);
+      const V inMoved = larger(in, smaller(t1, t2)), outMoved = smaller(out, larger(t1, t2));
+      // Parallel to the edges: inside their band or never.
+      const V inFlat = std::abs(q == 0 ? a1 : a2) > 1.0f ? big : in;
+      in = hn::IfThenElse(flat, inFlat, inMoved);
+      out = hn::IfThenElse(flat, out, outMoved);
+    }
+    // s = h / sqrt(h^2 + t^2) from the horizon (t endless) down to the foot.
+    const auto crosses = hn::Le(in, out);
+    const V outS = hn::IfThenElse(
+      hn::Lt(out, big), hn::Div(hv, hn::Sqrt(hn::Add(h2, hn::Mul(out, out)))), zero);
+    const V inS = hn::Div(hv, hn::Sqrt(hn::Add(h2, hn::Mul(in, in))));
+    const V firstTo = hn::IfThenElse(crosses, outS, one);
+    const auto second = hn::And(crosses, hn::Gt(in, zero));
+    const V none = one; // from 1 to 0: no stretch
+    const V s0 = larger(lo, zero), s1 = smaller(hi, firstTo);
+    const V s2 = larger(lo, inS), s3 = smaller(hi, one);
+    hn::StoreU(hn::IfThenElse(any, s0, none), d, from + k);
+    hn::StoreU(hn::IfThenElseZero(any, s1), d, to + k);
+    hn::StoreU(hn::IfThenElse(hn::And(any, second), s2, none), d, from + bins + k);
+    hn::StoreU(hn::IfThenElseZero(hn::And(any, second), s3), d, to + bins + k);
+  }
+}
+
 } // namespace HWY_NAMESPACE
 } // namespace detail
 } // namespace proxygi
@@ -236,6 +301,7 @@ namespace detail
 HWY_EXPORT(BlockerLanesImpl);
 HWY_EXPORT(DotBlocksImpl);
 HWY_EXPORT(PlaneTermsImpl);
+HWY_EXPORT(SkyStretchesImpl);
 
 float BlockerAsin(float x)
 {
@@ -278,6 +344,12 @@ void PlaneTerms(const PlaneLookUps& in, const int* blocks, int count, float* wei
   std::size_t stride)
 {
   HWY_DYNAMIC_DISPATCH(PlaneTermsImpl)(in, blocks, count, weights, terms, stride);
+}
+
+void SkyStretches(const float* axes, int bins, const float normal[3], float a1, float a2, float h,
+  float* from, float* to)
+{
+  HWY_DYNAMIC_DISPATCH(SkyStretchesImpl)(axes, bins, normal, a1, a2, h, from, to);
 }
 } // namespace detail
 } // namespace proxygi

@@ -60,6 +60,18 @@ struct PlaneLookUps
 /// rounded as Scale's scalar loop rounds it.
 void PlaneTerms(const PlaneLookUps& in, const int* blocks, int count, float* weights, float* terms,
   std::size_t stride);
+
+/**
+ * PlaneLightMap::SkyPastEdges' stretches for `bins` azimuth bins (a
+ * multiple of sh::BatchWidth): axes holds per bin cos, sin, and the steps
+ * along the extent's two coordinates, each a row of `bins`; normal the
+ * receiver's normal in the plane's frame, a1 a2 its foot in extent
+ * coordinates, h its height. Per bin, the heights' first stretch
+ * [from[b], to[b]] and second [from[bins + b], to[bins + b]]; a stretch
+ * with to <= from is none. Each operation is the scalar loop's, in order.
+ */
+void SkyStretches(const float* axes, int bins, const float normal[3], float a1, float a2, float h,
+  float* from, float* to);
 } // namespace detail
 } // namespace proxygi
 

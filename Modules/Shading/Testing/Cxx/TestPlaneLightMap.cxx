@@ -244,15 +244,16 @@ int TestPlaneLightMap(int, char*[])
   sh::SetBatchKernelsEnabled(true);
   PGI_CHECK(sh::SetBatchTarget(""));
   // Scale's terms side by side (the look-ups of s gathered, the extent and
-  // the grid's edges selected per lane): the same floats on every target as
-  // the scalar loop with the kernels off, with random s in [0, 1], bounded
+  // the grid's edges selected per lane) and the sky's stretches past the
+  // edges bin by bin in lanes: the same floats on every target as the
+  // scalar loops with the kernels off, with random s in [0, 1], bounded
   // and unbounded grounds, receivers over the grid, past its edges and far
   // off it, facing every way, with and without V, 64 and 40 directions.
   {
     std::mt19937 random(11);
     std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
     const float halfEdges[6] = { 1.2f, 0.3f, 0, -0.2f, 0.9f, 0 };
-    int checked = 0, equal = 0, partial = 0;
+    int checked = 0, equal = 0, partial = 0, gaps = 0;
     for (const float* edges : { static_cast<const float*>(nullptr), halfEdges })
     {
       const Blockers b = Ground(edges);
@@ -260,6 +261,17 @@ int TestPlaneLightMap(int, char*[])
       {
         PlaneLightMap map;
         map.Layout(b, 0, {}, 48, directions, 4);
+        EnvironmentMap sky;
+        sky.SetFromFunction(
+          64, 32,
+          [](const double d[3], float rgb[3], void*)
+          {
+            rgb[0] = static_cast<float>(1.0 + 0.5 * d[0] - 0.3 * d[2]);
+            rgb[1] = static_cast<float>(1.0 + 0.4 * d[1]);
+            rgb[2] = static_cast<float>(0.8 + 0.2 * d[0] * d[1]);
+          },
+          nullptr);
+        map.SetSky(sky);
         for (int i = 0; i < map.GetNumberOfPoints(); ++i)
         {
           for (int ch = 0; ch < 3; ++ch)
@@ -285,17 +297,20 @@ int TestPlaneLightMap(int, char*[])
           }
           g[0] = 2.5f;
           const float* gs = trial % 2 ? g : nullptr;
-          float reference[3], scale[3];
+          float reference[3], scale[3], referenceGap[3], gap[3];
           sh::SetBatchKernelsEnabled(false);
-          const bool seen = map.Scale(p, n, reference, gs);
+          const bool seen = map.Scale(p, n, reference, gs, referenceGap);
           sh::SetBatchKernelsEnabled(true);
           partial += seen && reference[0] > 0.0f && reference[0] < 1.0f ? 1 : 0;
+          gaps += referenceGap[0] > 0.0f ? 1 : 0;
           for (const std::string& target : sh::BatchTargets())
           {
             PGI_CHECK(sh::SetBatchTarget(target));
             ++checked;
-            equal += map.Scale(p, n, scale, gs) == seen && scale[0] == reference[0] &&
-                scale[1] == reference[1] && scale[2] == reference[2]
+            equal += map.Scale(p, n, scale, gs, gap) == seen && scale[0] == reference[0] &&
+                scale[1] == reference[1] && scale[2] == reference[2] &&
+                gap[0] == referenceGap[0] && gap[1] == referenceGap[1] &&
+                gap[2] == referenceGap[2]
               ? 1
               : 0;
           }
@@ -303,11 +318,12 @@ int TestPlaneLightMap(int, char*[])
       }
     }
     PGI_CHECK(sh::SetBatchTarget(""));
-    std::printf("plane scale's terms side by side: %d of %d equal to the scalar loop (%d "
-                "receivers partly shadowed)\n",
-      equal, checked, partial);
+    std::printf("plane scale's terms and the sky's stretches side by side: %d of %d equal to "
+                "the scalar loops (%d receivers partly shadowed, %d seeing sky past the edges)\n",
+      equal, checked, partial, gaps);
     PGI_CHECK(checked > 200);
     PGI_CHECK(partial > 100);
+    PGI_CHECK(gaps > 50);
     PGI_CHECK(equal == checked);
   }
   // A square ground of half size a under a receiver looking down from h:
