@@ -1,6 +1,8 @@
 #include "pgiEnvironmentMap.h"
 
+#include "pgiEnvironmentMapBatch.h"
 #include "pgiSHBasis.h"
+#include "pgiSHBatch.h"
 #include "pgiSHZonal.h"
 
 #include "vtkDataArray.h"
@@ -338,9 +340,11 @@ void EnvironmentMap::ProjectSH(int order, double* red, double* green, double* bl
   {
     std::fill(o, o + n2, 0.0);
   }
-  // Column integrals of cos(m phi_world) and sin(m phi_world), phi_world = phi + rotation.
-  std::vector<double> cosInt(static_cast<std::size_t>(w) * order),
-    sinInt(static_cast<std::size_t>(w) * order);
+  // Column integrals of cos(m phi_world) and sin(m phi_world), phi_world = phi
+  // + rotation; `stride` per column (zeros past the order) for RowSums.
+  const int stride = detail::RowSumsStride(order);
+  std::vector<double> cosInt(static_cast<std::size_t>(w) * stride, 0.0),
+    sinInt(static_cast<std::size_t>(w) * stride, 0.0);
   for (int i = 0; i < w; ++i)
   {
     const double a = 2 * Pi * i / w + this->Rotation, b = 2 * Pi * (i + 1) / w + this->Rotation;
@@ -348,13 +352,13 @@ void EnvironmentMap::ProjectSH(int order, double* red, double* green, double* bl
     {
       if (m == 0)
       {
-        cosInt[i * order] = b - a;
-        sinInt[i * order] = 0.0;
+        cosInt[i * stride] = b - a;
+        sinInt[i * stride] = 0.0;
       }
       else
       {
-        cosInt[i * order + m] = (std::sin(m * b) - std::sin(m * a)) / m;
-        sinInt[i * order + m] = (std::cos(m * a) - std::cos(m * b)) / m;
+        cosInt[i * stride + m] = (std::sin(m * b) - std::sin(m * a)) / m;
+        sinInt[i * stride + m] = (std::cos(m * a) - std::cos(m * b)) / m;
       }
     }
   }
@@ -363,7 +367,8 @@ void EnvironmentMap::ProjectSH(int order, double* red, double* green, double* bl
   std::vector<double> nodes, weights;
   // The rule on [0, 1] once, mapped onto each row's z interval.
   sh::GaussLegendre(8, 0.0, 1.0, nodes, weights);
-  const std::size_t perRow = static_cast<std::size_t>(n2) + 6 * static_cast<std::size_t>(order);
+  const std::size_t perRow = static_cast<std::size_t>(n2) + 6 * static_cast<std::size_t>(stride);
+  const bool batched = sh::BatchKernelsEnabled();
   std::vector<double> rows(perRow * static_cast<std::size_t>(h), 0.0);
   vtkSMPTools::For(0, h,
     [&](vtkIdType first, vtkIdType last)
@@ -373,7 +378,7 @@ void EnvironmentMap::ProjectSH(int order, double* red, double* green, double* bl
       {
         double* zInt = &rows[perRow * j];
         double* rowCos = zInt + n2;
-        double* rowSin = rowCos + 3 * order;
+        double* rowSin = rowCos + 3 * stride;
         // z integrals of y_l|m| at phi = 0 (carries K_lm, sqrt(2), sin^m theta).
         const double z0 = std::cos(Pi * (j + 1) / h), z1 = std::cos(Pi * j / h);
         for (std::size_t q = 0; q < nodes.size(); ++q)
@@ -385,15 +390,21 @@ void EnvironmentMap::ProjectSH(int order, double* red, double* green, double* bl
             zInt[i] += (z1 - z0) * weights[q] * basis[i];
           }
         }
+        const float* row = &this->RGB[3 * static_cast<std::size_t>(j) * w];
+        if (batched)
+        {
+          detail::RowSums(row, w, cosInt.data(), sinInt.data(), stride, rowCos, rowSin);
+          continue;
+        }
         for (int i = 0; i < w; ++i)
         {
-          const float* rgb = &this->RGB[3 * (static_cast<std::size_t>(j) * w + i)];
+          const float* rgb = row + 3 * static_cast<std::size_t>(i);
           for (int m = 0; m < order; ++m)
           {
             for (int c = 0; c < 3; ++c)
             {
-              rowCos[c * order + m] += rgb[c] * cosInt[i * order + m];
-              rowSin[c * order + m] += rgb[c] * sinInt[i * order + m];
+              rowCos[c * stride + m] += rgb[c] * cosInt[i * stride + m];
+              rowSin[c * stride + m] += rgb[c] * sinInt[i * stride + m];
             }
           }
         }
@@ -403,7 +414,7 @@ void EnvironmentMap::ProjectSH(int order, double* red, double* green, double* bl
   {
     const double* zInt = &rows[perRow * j];
     const double* rowCos = zInt + n2;
-    const double* rowSin = rowCos + 3 * order;
+    const double* rowSin = rowCos + 3 * stride;
     for (int l = 0; l < order; ++l)
     {
       for (int m = -l; m <= l; ++m)
@@ -412,7 +423,8 @@ void EnvironmentMap::ProjectSH(int order, double* red, double* green, double* bl
         const double zl = zInt[sh::Index(l, am)];
         for (int c = 0; c < 3; ++c)
         {
-          out[c][sh::Index(l, m)] += zl * (m < 0 ? rowSin[c * order + am] : rowCos[c * order + am]);
+          out[c][sh::Index(l, m)] +=
+            zl * (m < 0 ? rowSin[c * stride + am] : rowCos[c * stride + am]);
         }
       }
     }

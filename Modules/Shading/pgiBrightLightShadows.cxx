@@ -172,11 +172,14 @@ void BrightLightsFromRays(const BrightLightSet& lights, const Blockers& blockers
   BrightLightScratch& scratch, float* rgb)
 {
   const int rays = lights.Rays;
-  scratch.Origins.clear();
-  scratch.Directions.clear();
-  scratch.Weights.clear();
-  scratch.Light.clear();
-  scratch.Point.clear();
+  // Room for every ray, trimmed to those cast (no growth per ray).
+  const std::size_t most = static_cast<std::size_t>(points) * lights.Lights.size() * rays;
+  scratch.Origins.resize(3 * most);
+  scratch.Directions.resize(3 * most);
+  scratch.Weights.resize(most);
+  scratch.Light.resize(most);
+  scratch.Point.resize(most);
+  int count = 0;
   for (int j = 0; j < points; ++j)
   {
     const float* pj = &p[3 * j];
@@ -202,15 +205,15 @@ void BrightLightsFromRays(const BrightLightSet& lights, const Blockers& blockers
         {
           continue;
         }
-        scratch.Origins.insert(scratch.Origins.end(), o, o + 3);
-        scratch.Directions.insert(scratch.Directions.end(), w, w + 3);
-        scratch.Weights.push_back(cosine);
-        scratch.Light.push_back(static_cast<int>(l));
-        scratch.Point.push_back(j);
+        std::copy_n(o, 3, &scratch.Origins[3 * static_cast<std::size_t>(count)]);
+        std::copy_n(w, 3, &scratch.Directions[3 * static_cast<std::size_t>(count)]);
+        scratch.Weights[count] = cosine;
+        scratch.Light[count] = static_cast<int>(l);
+        scratch.Point[count] = j;
+        ++count;
       }
     }
   }
-  const int count = static_cast<int>(scratch.Weights.size());
   if (count == 0)
   {
     return;
