@@ -3,6 +3,7 @@
 #include "pgiEnvironmentMap.h"
 #include "pgiMaterial.h"
 #include "pgiSHLightTables.h"
+#include "pgiSHTables.h"
 #include "vtkPGIGISettings.h"
 #include "vtkPGILighting.h"
 
@@ -564,9 +565,17 @@ void vtkPGIGIBake::PlanEffects(vtkPGILighting* lighting)
   }
   b.NeedVisibility =
     b.AnyBlockers && (b.RunShadows || b.RunIndirect || b.RunPlaneBounce || b.RunLocal);
-  if (b.RunIndirect)
+  // The bounce's tables, built here (each in parallel) rather than first in
+  // a parallel loop (one thread building while the others wait).
+  if (b.RunIndirect || b.RunPlaneBounce)
   {
-    proxygi::sh::IndirectTables::Get(b.Order); // built before any parallel loop
+    proxygi::sh::IndirectTables::Get(b.Order);
+  }
+  if (this->Settings->GetIndirect() &&
+    this->Settings->GetIndirectMode() == vtkPGIGISettings::INDIRECT_MODE_SHADOWED)
+  {
+    proxygi::sh::IndirectTables::Get(b.IndirectOrder);
+    proxygi::sh::CapTables::Get(b.IndirectOrder);
   }
 }
 
