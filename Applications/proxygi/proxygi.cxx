@@ -5,6 +5,7 @@
 #include "proxygiProgress.h"
 
 #include "pgiOffscreenWindow.h"
+#include "pgiSHTableCache.h"
 
 #include "vtkLogger.h"
 
@@ -257,6 +258,15 @@ int main(int argc, char* argv[])
   {
     std::printf("proxygi %s\n", PROXYGI_VERSION);
     return 0;
+  }
+  // The commands that keep their scenes' data in --cache keep the SH tables
+  // there too (unless PROXYGI_TABLE_CACHE names a place): a process's first
+  // update then reads the tables instead of computing them.
+  if ((command == "render" || command == "view" || command == "calibrate" || command == "cloud") &&
+    !std::getenv("PROXYGI_TABLE_CACHE"))
+  {
+    proxygi::sh::SetTableCacheDirectory(
+      proxygi::cli::Option(args, "--cache", "proxygi-cache") + "/tables");
   }
   if (command == "render")
   {

@@ -2,6 +2,7 @@
 
 #include "pgiSHBasis.h"
 #include "pgiSHRotation.h"
+#include "pgiSHTableCache.h"
 #include "pgiSHZonal.h"
 
 #include "vtkSMPTools.h"
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -529,46 +531,71 @@ IndirectTables::IndirectTables(int order, int resolution, int fitDegree)
   this->D.resize(resolution * order);
   this->W.resize(resolution * order);
   this->M.resize(resolution * mSize);
-  // The angles are independent: in parallel (a first update waits on this).
-  vtkSMPTools::For(0, resolution,
-    [&](int first, int last)
+  // Each angle's integrals (the tables' cost), a sample each: the tables'
+  // angles (D, W, M), then the fit's grid of alpha = sin theta (D alone).
+  // Read from the disk cache where it holds them, else computed (in
+  // parallel: a process's first update waits on these tables) and written.
+  const int samples = 1024, terms = fitDegree + 1, width = 2 * order + mSize;
+  std::vector<double> integrals(static_cast<std::size_t>(resolution + samples) * width, 0.0);
+  const auto integrate = [&](int s, double* out)
+  {
+    if (s < resolution)
     {
-      for (int i = first; i < last; ++i)
+      const double theta = MaxAngle * s / (resolution - 1);
+      AveragedIndirectZonal(order, theta, out);
+      SphericalLightWeightZonal(order, theta, out + order);
+      ExactIndirectBlocks(order, theta, out + 2 * order);
+    }
+    else
+    {
+      const double alpha = static_cast<double>(s - resolution) / (samples - 1);
+      AveragedIndirectZonal(order, std::asin(alpha), out);
+      std::fill(out + order, out + width, 0.0);
+    }
+  };
+  char name[120];
+  std::snprintf(
+    name, sizeof(name), "indirect-order%d-resolution%d-samples%d.bin", order, resolution, samples);
+  if (!ReadCachedSamples(name, width, integrals, integrate))
+  {
+    vtkSMPTools::For(0, resolution + samples,
+      [&](int first, int last)
       {
-        const double theta = MaxAngle * i / (resolution - 1);
-        AveragedIndirectZonal(order, theta, &this->D[i * order]);
-        SphericalLightWeightZonal(order, theta, &this->W[i * order]);
-        ExactIndirectBlocks(order, theta, &this->M[i * mSize]);
-      }
-    });
+        for (int s = first; s < last; ++s)
+        {
+          integrate(s, &integrals[static_cast<std::size_t>(s) * width]);
+        }
+      });
+    WriteCachedTable(name, integrals);
+  }
+  for (int i = 0; i < resolution; ++i)
+  {
+    const double* at = &integrals[static_cast<std::size_t>(i) * width];
+    std::copy_n(at, order, &this->D[i * order]);
+    std::copy_n(at + order, order, &this->W[i * order]);
+    std::copy_n(at + 2 * order, mSize, &this->M[i * mSize]);
+  }
   this->DF.assign(this->D.begin(), this->D.end());
   this->WF.assign(this->W.begin(), this->W.end());
   this->MF.assign(this->M.begin(), this->M.end());
 
   // Least-squares polynomial in alpha = sin theta, per band, on a fine
   // uniform alpha grid (Sloan's Figure 4 fits against sin theta).
-  const int samples = 1024, terms = fitDegree + 1;
   Eigen::MatrixXd vandermonde(samples, terms);
   Eigen::MatrixXd values(samples, order);
-  vtkSMPTools::For(0, samples,
-    [&](int first, int last)
+  for (int k = 0; k < samples; ++k)
+  {
+    const double alpha = static_cast<double>(k) / (samples - 1);
+    double power = 1.0;
+    for (int p = 0; p < terms; ++p, power *= alpha)
     {
-      for (int k = first; k < last; ++k)
-      {
-        const double alpha = static_cast<double>(k) / (samples - 1);
-        double zh[MaxOrder];
-        AveragedIndirectZonal(order, std::asin(alpha), zh);
-        double power = 1.0;
-        for (int p = 0; p < terms; ++p, power *= alpha)
-        {
-          vandermonde(k, p) = power;
-        }
-        for (int l = 0; l < order; ++l)
-        {
-          values(k, l) = zh[l];
-        }
-      }
-    });
+      vandermonde(k, p) = power;
+    }
+    for (int l = 0; l < order; ++l)
+    {
+      values(k, l) = integrals[static_cast<std::size_t>(resolution + k) * width + l];
+    }
+  }
   const Eigen::MatrixXd coefficients = vandermonde.colPivHouseholderQr().solve(values);
   const Eigen::MatrixXd fitted = vandermonde * coefficients;
   this->Fit.resize(order * terms);

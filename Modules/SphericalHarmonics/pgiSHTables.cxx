@@ -1,5 +1,6 @@
 #include "pgiSHTables.h"
 
+#include "pgiSHTableCache.h"
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
 
@@ -7,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -46,25 +48,50 @@ CapTables::CapTables(int order, int resolution, const LogOptions& log)
   this->ThetaScale = (resolution - 1) / MaxAngle;
   this->Visibility.resize(resolution * order);
   this->LogD.resize(resolution * order);
-  // Each angle's cap is its own eigen-inversion: the angles in parallel
-  // (a process's first update waits on these tables).
-  TripleProduct::Get(order);
-  vtkSMPTools::For(0, resolution,
-    [&](int first, int last)
+  // The cap logs, an eigen-inversion each (the tables' cost): at the
+  // table's angles, then at the fit's, finer (sample 0 unused). Read from
+  // the disk cache where it holds them, else computed (in parallel: a
+  // process's first update waits on these tables) and written there.
+  const int fitSamples = 4 * resolution;
+  const auto angle = [&](int s)
+  {
+    return s < resolution ? MaxAngle * s / (resolution - 1)
+                          : MaxAngle * (s - resolution) / (fitSamples - 1);
+  };
+  std::vector<double> logs(static_cast<std::size_t>(resolution + fitSamples) * order, 0.0);
+  const auto capLog = [&](int s, double* zf)
+  {
+    if (s != resolution)
     {
-      double zv[MaxOrder], zf[MaxOrder];
-      for (int i = first; i < last; ++i)
+      CapLogZonal(order, angle(s), log, zf);
+    }
+  };
+  char name[160];
+  std::snprintf(name, sizeof(name), "cap-logs-order%d-resolution%d-clip%a-floor%a.bin", order,
+    resolution, log.RelativeClip, log.AbsoluteFloor);
+  TripleProduct::Get(order);
+  if (!ReadCachedSamples(name, order, logs, capLog))
+  {
+    vtkSMPTools::For(0, resolution + fitSamples,
+      [&](int first, int last)
       {
-        const double theta = MaxAngle * i / (resolution - 1);
-        CapVisibilityZonal(order, theta, zv);
-        CapLogZonal(order, theta, log, zf);
-        for (int l = 0; l < order; ++l)
+        for (int s = first; s < last; ++s)
         {
-          this->Visibility[i * order + l] = zv[l] * ZonalScale(l);
-          this->LogD[i * order + l] = zf[l] * ZonalScale(l);
+          capLog(s, &logs[static_cast<std::size_t>(s) * order]);
         }
-      }
-    });
+      });
+    WriteCachedTable(name, logs);
+  }
+  for (int i = 0; i < resolution; ++i)
+  {
+    double zv[MaxOrder];
+    CapVisibilityZonal(order, angle(i), zv);
+    for (int l = 0; l < order; ++l)
+    {
+      this->Visibility[i * order + l] = zv[l] * ZonalScale(l);
+      this->LogD[i * order + l] = logs[i * order + l] * ZonalScale(l);
+    }
+  }
   this->VisibilityF.assign(this->Visibility.begin(), this->Visibility.end());
   this->LogF.assign(this->LogD.begin(), this->LogD.end());
   const int stride = this->GetLogBandStride();
@@ -78,24 +105,12 @@ CapTables::CapTables(int order, int resolution, const LogOptions& log)
   }
 
   // Optimal linear fit (eq. 24) on caps sampled finer than the output grid.
-  const int fitSamples = 4 * resolution;
-  std::vector<double> sampled(2 * static_cast<std::size_t>(fitSamples) * order);
-  vtkSMPTools::For(1, fitSamples,
-    [&](int first, int last)
-    {
-      for (int i = first; i < last; ++i)
-      {
-        const double theta = MaxAngle * i / (fitSamples - 1);
-        double* zv = &sampled[2 * static_cast<std::size_t>(i) * order];
-        CapVisibilityZonal(order, theta, zv);
-        CapLogZonal(order, theta, log, zv + order);
-      }
-    });
   std::vector<double> xs(1, 0.0), as(1, 1.0), bs(1, 1.0);
   for (int i = 1; i < fitSamples; ++i)
   {
-    const double* zv = &sampled[2 * static_cast<std::size_t>(i) * order];
-    const double* zf = zv + order;
+    double zv[MaxOrder];
+    CapVisibilityZonal(order, angle(resolution + i), zv);
+    const double* zf = &logs[static_cast<std::size_t>(resolution + i) * order];
     // ZH vectors: the dot products over m reduce to l sums.
     const double dc = std::exp(-zf[0] / SqrtFourPi);
     double fHatSq = 0.0, gDotF = 0.0;
