@@ -238,8 +238,9 @@ void SkyStretchesImpl(const float* axes, int bins, const float normal[3], float 
   const V n0 = hn::Set(d, normal[0]), n1 = hn::Set(d, normal[1]), m = hn::Set(d, normal[2]);
   const V hv = hn::Set(d, h), h2 = hn::Mul(hv, hv);
   const bool atNadir = normal[2] < 0.0f;
-  const auto smaller = [](V a, V b) { return hn::IfThenElse(hn::Lt(b, a), b, a); }; // std::min(a, b)
-  const auto larger = [](V a, V b) { return hn::IfThenElse(hn::Lt(a, b), b, a); };  // std::max(a, b)
+  const auto smaller = [](V a, V b)
+  { return hn::IfThenElse(hn::Lt(b, a), b, a); };                                  // std::min(a, b)
+  const auto larger = [](V a, V b) { return hn::IfThenElse(hn::Lt(a, b), b, a); }; // std::max(a, b)
   for (int k = 0; k < bins; k += lanes)
   {
     const V c = hn::LoadU(d, axes + k), sn = hn::LoadU(d, axes + bins + k);
@@ -247,8 +248,7 @@ void SkyStretchesImpl(const float* axes, int bins, const float normal[3], float 
     const auto atHorizon = hn::Gt(along, zero);
     const auto any = atNadir ? hn::Eq(zero, zero) : atHorizon;
     // Where n.w > 0 changes sign: the heights above it or below it.
-    const V turn =
-      hn::Div(hn::Abs(along), hn::Sqrt(hn::Add(hn::Mul(along, along), hn::Mul(m, m))));
+    const V turn = hn::Div(hn::Abs(along), hn::Sqrt(hn::Add(hn::Mul(along, along), hn::Mul(m, m))));
     V lo = zero, hi = one;
     if (atNadir)
     {
@@ -273,8 +273,8 @@ void SkyStretchesImpl(const float* axes, int bins, const float normal[3], float 
     }
     // s = h / sqrt(h^2 + t^2) from the horizon (t endless) down to the foot.
     const auto crosses = hn::Le(in, out);
-    const V outS = hn::IfThenElse(
-      hn::Lt(out, big), hn::Div(hv, hn::Sqrt(hn::Add(h2, hn::Mul(out, out)))), zero);
+    const V outS =
+      hn::IfThenElse(hn::Lt(out, big), hn::Div(hv, hn::Sqrt(hn::Add(h2, hn::Mul(out, out)))), zero);
     const V inS = hn::Div(hv, hn::Sqrt(hn::Add(h2, hn::Mul(in, in))));
     const V firstTo = hn::IfThenElse(crosses, outS, one);
     const auto second = hn::And(crosses, hn::Gt(in, zero));

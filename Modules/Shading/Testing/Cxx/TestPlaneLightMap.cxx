@@ -308,9 +308,8 @@ int TestPlaneLightMap(int, char*[])
             PGI_CHECK(sh::SetBatchTarget(target));
             ++checked;
             equal += map.Scale(p, n, scale, gs, gap) == seen && scale[0] == reference[0] &&
-                scale[1] == reference[1] && scale[2] == reference[2] &&
-                gap[0] == referenceGap[0] && gap[1] == referenceGap[1] &&
-                gap[2] == referenceGap[2]
+                scale[1] == reference[1] && scale[2] == reference[2] && gap[0] == referenceGap[0] &&
+                gap[1] == referenceGap[1] && gap[2] == referenceGap[2]
               ? 1
               : 0;
           }
