@@ -5,8 +5,6 @@
 #include "pgiSHTableCache.h"
 #include "pgiSHZonal.h"
 
-#include "vtkSMPTools.h"
-
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -556,18 +554,7 @@ IndirectTables::IndirectTables(int order, int resolution, int fitDegree)
   char name[120];
   std::snprintf(
     name, sizeof(name), "indirect-order%d-resolution%d-samples%d.bin", order, resolution, samples);
-  if (!ReadCachedSamples(name, width, integrals, integrate))
-  {
-    vtkSMPTools::For(0, resolution + samples,
-      [&](int first, int last)
-      {
-        for (int s = first; s < last; ++s)
-        {
-          integrate(s, &integrals[static_cast<std::size_t>(s) * width]);
-        }
-      });
-    WriteCachedTable(name, integrals);
-  }
+  CachedSamples(name, width, integrals, integrate);
   for (int i = 0; i < resolution; ++i)
   {
     const double* at = &integrals[static_cast<std::size_t>(i) * width];

@@ -1,5 +1,6 @@
 #include "pgiSHTableCache.h"
 
+#include "vtkSMPTools.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
@@ -155,6 +156,26 @@ bool ReadCachedSamples(const std::string& name, int width, std::vector<double>& 
   }
   values.swap(read);
   return true;
+}
+
+bool CachedSamples(const std::string& name, int width, std::vector<double>& values,
+  const std::function<void(int, double*)>& compute)
+{
+  if (ReadCachedSamples(name, width, values, compute))
+  {
+    return true;
+  }
+  const int samples = width > 0 ? static_cast<int>(values.size() / width) : 0;
+  vtkSMPTools::For(0, samples,
+    [&](int first, int last)
+    {
+      for (int s = first; s < last; ++s)
+      {
+        compute(s, &values[static_cast<std::size_t>(s) * width]);
+      }
+    });
+  WriteCachedTable(name, values);
+  return false;
 }
 
 } // namespace sh

@@ -49,6 +49,12 @@ PROXYGISPHERICALHARMONICS_EXPORT bool WriteCachedTable(
  */
 PROXYGISPHERICALHARMONICS_EXPORT bool ReadCachedSamples(const std::string& name, int width,
   std::vector<double>& values, const std::function<void(int, double*)>& compute);
+
+/// A table's samples: read (ReadCachedSamples) where the cache holds them,
+/// else computed by compute(sample, out) for every sample, in parallel,
+/// and written to the cache. True when they were read.
+PROXYGISPHERICALHARMONICS_EXPORT bool CachedSamples(const std::string& name, int width,
+  std::vector<double>& values, const std::function<void(int, double*)>& compute);
 } // namespace sh
 } // namespace proxygi
 

@@ -4,8 +4,6 @@
 #include "pgiSHTripleProduct.h"
 #include "pgiSHZonal.h"
 
-#include "vtkSMPTools.h"
-
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -70,18 +68,7 @@ CapTables::CapTables(int order, int resolution, const LogOptions& log)
   std::snprintf(name, sizeof(name), "cap-logs-order%d-resolution%d-clip%a-floor%a.bin", order,
     resolution, log.RelativeClip, log.AbsoluteFloor);
   TripleProduct::Get(order);
-  if (!ReadCachedSamples(name, order, logs, capLog))
-  {
-    vtkSMPTools::For(0, resolution + fitSamples,
-      [&](int first, int last)
-      {
-        for (int s = first; s < last; ++s)
-        {
-          capLog(s, &logs[static_cast<std::size_t>(s) * order]);
-        }
-      });
-    WriteCachedTable(name, logs);
-  }
+  CachedSamples(name, order, logs, capLog);
   for (int i = 0; i < resolution; ++i)
   {
     double zv[MaxOrder];
