@@ -172,7 +172,8 @@ void BrightLightsFromRays(const BrightLightSet& lights, const Blockers& blockers
   BrightLightScratch& scratch, float* rgb)
 {
   const int rays = lights.Rays;
-  // Room for every ray, trimmed to those cast (no growth per ray).
+  // Room for every ray that may be cast, the first `count` of them used
+  // (no growth per ray).
   const std::size_t most = static_cast<std::size_t>(points) * lights.Lights.size() * rays;
   scratch.Origins.resize(3 * most);
   scratch.Directions.resize(3 * most);

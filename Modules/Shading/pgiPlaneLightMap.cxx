@@ -63,12 +63,12 @@ void PlaneLightMap::Layout(const Blockers& blockers, int plane,
   // the plane (a spherical Fibonacci spiral), fixed in the plane's frame.
   const int count = std::max(0, std::min(MaxDirections, directions));
   this->Directions.resize(3 * static_cast<std::size_t>(count));
-  this->StepU.resize(count);
-  this->StepV.resize(count);
   this->Coefficients = order * order;
   this->DirectionStride = PaddedDirections(count);
+  // Zeros past the last direction: the batched terms read whole blocks.
+  this->StepU.assign(this->DirectionStride, 0.0f);
+  this->StepV.assign(this->DirectionStride, 0.0f);
   this->Basis.assign(static_cast<std::size_t>(this->Coefficients) * this->DirectionStride, 0.0f);
-  this->PaddedSteps.assign(2 * static_cast<std::size_t>(this->DirectionStride), 0.0f);
   const double golden = (1.0 + std::sqrt(5.0)) / 2.0, pi = 3.14159265358979323846;
   for (int k = 0; k < count; ++k)
   {
@@ -81,8 +81,6 @@ void PlaneLightMap::Layout(const Blockers& blockers, int plane,
     }
     this->StepU[k] = static_cast<float>(a / down);
     this->StepV[k] = static_cast<float>(b / down);
-    this->PaddedSteps[k] = this->StepU[k];
-    this->PaddedSteps[this->DirectionStride + k] = this->StepV[k];
     if (order > 0)
     {
       StoreBasis(order, &this->Directions[3 * k], this->Basis.data(), this->DirectionStride, k);
@@ -351,8 +349,8 @@ void PlaneLightMap::SkyPastEdges(
   int stretchBin[2 * SkyBins];
   float stretchFrom[2 * SkyBins], stretchTo[2 * SkyBins];
   int stretches = 0;
-  bool needed[SkyStride / DotLanes] = {};
-  if (sh::BatchKernelsEnabled())
+  const bool batched = sh::BatchKernelsEnabled();
+  if (batched)
   {
     static_assert(SkyBins % sh::BatchWidth == 0, "the bins fill the batches");
     float from[2 * SkyBins], to[2 * SkyBins];
@@ -371,7 +369,7 @@ void PlaneLightMap::SkyPastEdges(
       }
     }
   }
-  for (int b = 0; !sh::BatchKernelsEnabled() && b < SkyBins; ++b)
+  for (int b = 0; !batched && b < SkyBins; ++b)
   {
     const float c = this->SkyAxes[b], sn = this->SkyAxes[SkyBins + b];
     // Where n.w > 0 along the bin's centre: n.w = A cos e - m sin e changes
@@ -451,6 +449,7 @@ void PlaneLightMap::SkyPastEdges(
   float skyV[SkyStride];
   if (g)
   {
+    bool needed[SkyStride / DotLanes] = {};
     for (int e = 0; e < stretches; ++e)
     {
       int first = 0;
@@ -546,7 +545,7 @@ bool PlaneLightMap::Scale(
   const float fu = (x - this->U0) * inv, fv = (y - this->V0) * inv, hu = h * inv;
   const bool empty = this->S.empty();
   float sum[3] = { 0, 0, 0 }, weights = 0.0f;
-  const int count = static_cast<int>(this->StepU.size());
+  const int count = this->GetNumberOfDirections();
   // V at the directions the receiver faces (Layout allows at most
   // MaxDirections), a block of DotLanes directions at a time.
   float cosines[MaxDirections], v[MaxDirections];
@@ -568,15 +567,16 @@ bool PlaneLightMap::Scale(
     detail::DotBlocks(this->Coefficients, g, this->Basis.data(),
       static_cast<std::size_t>(this->DirectionStride), blocks, facing, v);
   }
-  if (sh::BatchKernelsEnabled())
+  const bool batched = sh::BatchKernelsEnabled();
+  if (batched)
   {
     // The terms side by side, then summed in the scalar loop's order (the
     // directions it skips add zeros).
     detail::PlaneLookUps in;
     in.Cosines = cosines;
     in.V = g ? v : nullptr;
-    in.StepU = this->PaddedSteps.data();
-    in.StepV = this->PaddedSteps.data() + this->DirectionStride;
+    in.StepU = this->StepU.data();
+    in.StepV = this->StepV.data();
     in.X = x;
     in.Y = y;
     in.H = h;
@@ -604,7 +604,7 @@ bool PlaneLightMap::Scale(
       }
     }
   }
-  for (int k = 0; !sh::BatchKernelsEnabled() && k < count; ++k)
+  for (int k = 0; !batched && k < count; ++k)
   {
     const float c = cosines[k];
     if (!(c > 0.0f))

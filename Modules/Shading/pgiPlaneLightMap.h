@@ -143,7 +143,7 @@ public:
   bool GetBounded() const { return this->Bounded; }
   const float* GetDual1() const { return this->Dual1; }
   const float* GetDual2() const { return this->Dual2; }
-  int GetNumberOfDirections() const { return static_cast<int>(this->StepU.size()); }
+  int GetNumberOfDirections() const { return static_cast<int>(this->Directions.size() / 3); }
   /// Direction k's world vector, and its steps on the plane per unit height.
   const float* GetDirection(int k) const { return &this->Directions[3 * k]; }
   float GetStepU(int k) const { return this->StepU[k]; }
@@ -161,11 +161,9 @@ private:
   int Columns = 0, Rows = 0;
   std::vector<float> S;
   // Per direction: the world direction and its step on the plane per unit
-  // height, (w.U, w.V) / (-w.m).
+  // height, (w.U, w.V) / (-w.m); the steps padded with zeros to
+  // DirectionStride.
   std::vector<float> Directions, StepU, StepV;
-  // StepU then StepV, each padded with zeros to DirectionStride (the
-  // batched terms read whole blocks).
-  std::vector<float> PaddedSteps;
   int Coefficients = 0;
   // The basis at the directions, coefficient-major: coefficient i of
   // direction k at i * DirectionStride + k (the stride a multiple of
