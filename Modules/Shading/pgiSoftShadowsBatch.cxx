@@ -3,7 +3,6 @@
 #define HWY_TARGET_INCLUDE "pgiSoftShadowsBatch.cxx"
 #include "hwy/foreach_target.h" // IWYU pragma: keep
 
-#include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"
 
 #include "pgiSHBatch.h"
@@ -26,12 +25,40 @@ using D = hn::ScalableTag<float>;
 using V = hn::Vec<D>;
 constexpr int W = sh::BatchWidth;
 
-// The blockers' angular radius: Highway's float asin, one lane, for the
-// scalar path (the same polynomial the batch runs).
+// asin(x) for 0 <= x <= 1 (NaN stays NaN): Highway's float asin (its
+// coefficients and its two branches, |x| < 0.5 and the square root past it),
+// with a multiplication and an addition per step instead of its fused
+// multiply-adds, so that every target, and the scalar path, round alike.
+// belowHalf: every lane is below 0.5 (no square root).
+template <class DF>
+HWY_INLINE hn::Vec<DF> AsinLanes(DF d, hn::Vec<DF> x, bool belowHalf)
+{
+  using VF = hn::Vec<DF>;
+  const VF half = hn::Set(d, 0.5f);
+  const auto small = hn::Lt(x, half);
+  // Past 0.5: asin(x) = pi/2 - 2 asin(sqrt((1 - x) / 2)).
+  const VF yy = belowHalf ? hn::Mul(x, x)
+                          : hn::IfThenElse(small, hn::Mul(x, x), hn::Sub(half, hn::Mul(x, half)));
+  const VF y = belowHalf ? x : hn::IfThenElse(small, x, hn::Sqrt(yy));
+  VF p = hn::Set(d, 0.04197454825f);
+  p = hn::Add(hn::Mul(p, yy), hn::Set(d, 0.02424046025f));
+  p = hn::Add(hn::Mul(p, yy), hn::Set(d, 0.04547423869f));
+  p = hn::Add(hn::Mul(p, yy), hn::Set(d, 0.07495029271f));
+  p = hn::Add(hn::Mul(p, yy), hn::Set(d, 0.1666677296f));
+  const VF z0 = hn::Add(hn::Mul(p, hn::Mul(yy, y)), y);
+  if (belowHalf)
+  {
+    return z0;
+  }
+  const VF z1 = hn::Sub(hn::Set(d, 1.57079632679489661923f), hn::Mul(z0, hn::Set(d, 2.0f)));
+  return hn::IfThenElse(small, z0, z1);
+}
+
+// The blockers' angular radius for the scalar path: AsinLanes on one lane.
 float BlockerAsinImpl(float x)
 {
   const hn::CappedTag<float, 1> d1;
-  return hn::GetLane(hn::Asin(d1, hn::Set(d1, x)));
+  return hn::GetLane(AsinLanes(d1, hn::Set(d1, x), false));
 }
 
 // ReplaceBlocker and the MinAngle cut of VisitBlockers, lane by lane: every
@@ -107,7 +134,9 @@ void BlockerLanesImpl(const float* lanes, const float* X, const float* Y, const 
       // One division (the scalar path's too).
       const V inverse = hn::Div(one, dist);
       const V sine = hn::Min(one, hn::Mul(r, inverse));
-      hn::Store(hn::IfThenElse(keep, hn::Asin(d, sine), skip), d, out);
+      // Most blockers subtend less than 30 degrees: then no square root.
+      const V angle = AsinLanes(d, sine, hn::AllTrue(d, hn::Lt(sine, half)));
+      hn::Store(hn::IfThenElse(keep, angle, skip), d, out);
       hn::Store(hn::Mul(ex, inverse), d, dx + s * W + k);
       hn::Store(hn::Mul(ey, inverse), d, dy + s * W + k);
       hn::Store(hn::Mul(ez, inverse), d, dz + s * W + k);

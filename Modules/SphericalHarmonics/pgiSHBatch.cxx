@@ -109,7 +109,7 @@ HWY_INLINE void BasisLanes(int order, T x, T y, T z, T* out)
       // zero in skipped lanes.
       const auto interpolate = [&](int l, V r0, V r1)
       {
-        V z = hn::MulAdd(hn::Sub(r1, r0), t, r0);
+        V z = hn::Add(r0, hn::Mul(hn::Sub(r1, r0), t));
         if (ratios)
         {
           z = hn::Mul(z, hn::Set(d, ratios[b * order + l]));
@@ -158,7 +158,7 @@ HWY_INLINE void BasisLanes(int order, T x, T y, T z, T* out)
 #pragma GCC unroll 16
         for (int i = l * l; i < (l + 1) * (l + 1); ++i)
         {
-          acc[i] = hn::MulAdd(y[i].v, zh[l].v, acc[i]);
+          acc[i] = hn::Add(acc[i], hn::Mul(y[i].v, zh[l].v));
         }
       }
     }
@@ -211,7 +211,7 @@ HWY_INLINE void TableLanes(
     const auto at = hn::Add(base, hn::Set(di, l));
     const V r0 = hn::GatherIndex(d, table, at);
     const V r1 = hn::GatherIndex(d, table, hn::Add(at, hn::Set(di, order)));
-    out[l] = Lane(hn::MulAdd(hn::Sub(r1, r0), t, r0));
+    out[l] = Lane(hn::Add(r0, hn::Mul(hn::Sub(r1, r0), t)));
   }
 }
 
@@ -246,9 +246,9 @@ void BatchIndirectWeightsImpl(const CapTables& caps, const IndirectTables& indir
       V band = hn::Zero(d);
       for (int i = l * l; i < (l + 1) * (l + 1); ++i)
       {
-        band = hn::MulAdd(hn::Set(d, h[i]), y[i].v, band);
+        band = hn::Add(band, hn::Mul(hn::Set(d, h[i]), y[i].v));
       }
-      weight = hn::MulAdd(zCap[l].v, band, weight);
+      weight = hn::Add(weight, hn::Mul(zCap[l].v, band));
     }
     hn::Store(hn::IfThenElseZero(keep, weight), d, capWeight + k);
     if (channels <= 0)
@@ -267,9 +267,9 @@ void BatchIndirectWeightsImpl(const CapTables& caps, const IndirectTables& indir
         V band = hn::Zero(d);
         for (int i = l * l; i < (l + 1) * (l + 1); ++i)
         {
-          band = hn::MulAdd(y[i].v, hn::Set(d, r[i]), band);
+          band = hn::Add(band, hn::Mul(y[i].v, hn::Set(d, r[i])));
         }
-        sum = hn::MulAdd(zAveraged[l].v, band, sum);
+        sum = hn::Add(sum, hn::Mul(zAveraged[l].v, band));
       }
       hn::Store(hn::IfThenElseZero(keep, sum), d, kappa + c * W + k);
     }

@@ -154,7 +154,9 @@ void RepeatedSquareImpl(int order, const std::int32_t* steps, float* g)
     }
   }
 }
-// The guard's sampled extremes of the reconstruction, per lane.
+
+// The guard's sampled extremes of the reconstruction, per lane; each sample's
+// sum as the scalar Dot rounds it.
 void GuardExtremesImpl(int order, const float* g, float* vmin, float* vmax)
 {
   const D d;
@@ -170,7 +172,7 @@ void GuardExtremesImpl(int order, const float* g, float* vmin, float* vmax)
       c[i] = hn::Load(d, g + i * W + k);
     }
     V lo = hn::Set(d, HUGE_VALF), hi = hn::Set(d, -HUGE_VALF);
-    // Four samples at a time: four independent chains of multiply-adds
+    // Four samples at a time: four independent chains of sums
     // (each sample's sum keeps its order).
     constexpr int group = 4;
     int s = 0;
@@ -186,7 +188,7 @@ void GuardExtremesImpl(int order, const float* g, float* vmin, float* vmax)
       {
         for (int q = 0; q < group; ++q)
         {
-          v[q] = hn::MulAdd(c[i], hn::Set(d, y[q * n2 + i]), v[q]);
+          v[q] = hn::Add(v[q], hn::Mul(c[i], hn::Set(d, y[q * n2 + i])));
         }
       }
       for (int q = 0; q < group; ++q)
@@ -201,7 +203,7 @@ void GuardExtremesImpl(int order, const float* g, float* vmin, float* vmax)
       V v = hn::Mul(c[0], hn::Set(d, y[0]));
       for (int i = 1; i < n2; ++i)
       {
-        v = hn::MulAdd(c[i], hn::Set(d, y[i]), v);
+        v = hn::Add(v, hn::Mul(c[i], hn::Set(d, y[i])));
       }
       lo = hn::Min(lo, v);
       hi = hn::Max(hi, v);
