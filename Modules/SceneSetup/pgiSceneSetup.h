@@ -119,8 +119,9 @@ PROXYGISCENESETUP_EXPORT void ConfigureGlobalIllumination(vtkPGIGlobalIlluminati
   const SceneDescription& scene, const LoadedScene& loaded, const SceneProxies& proxies);
 
 /// Shades each receiver in turn with the one filter `gi`, so its bake is
-/// built once for the scene, and returns copies of its outputs (each with
-/// its Plan field array): the filter reuses its output's arrays.
+/// built once for the scene, and returns shallow copies of its outputs (each
+/// with its Plan field array): the filter gives an update new arrays while
+/// the last ones are held elsewhere, so each copy keeps its own.
 PROXYGISCENESETUP_EXPORT std::vector<vtkSmartPointer<vtkPolyData>> ShadeEach(
   vtkPGIGlobalIllumination* gi, const std::vector<vtkSmartPointer<vtkPolyData>>& receivers);
 
