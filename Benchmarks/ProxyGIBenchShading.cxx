@@ -166,7 +166,11 @@ void BenchVisibility(benchmark::State& state, int order, int count)
 }
 
 // The same receivers and blockers through VisibilityBatch on one target.
-void BenchVisibilityBatch(benchmark::State& state, int order, int count, const std::string& target)
+// neighbours: each batch of 16 receivers a 4 x 4 patch 0.02 apart around a
+// random point, as the filter batches them (its receivers grouped by their
+// hierarchy cluster); otherwise every receiver anywhere in the square.
+void BenchVisibilityBatch(
+  benchmark::State& state, int order, int count, const std::string& target, bool neighbours)
 {
   if (!proxygi::sh::SetBatchTarget(target))
   {
@@ -181,10 +185,17 @@ void BenchVisibilityBatch(benchmark::State& state, int order, int count, const s
   const Blockers blockers = RandomBlockers(count, rng);
   constexpr int Receivers = 256;
   std::vector<float> p(3 * Receivers), n(3 * Receivers);
+  float centre[2] = { 0.0f, 0.0f };
   for (int r = 0; r < Receivers; ++r)
   {
-    p[3 * r] = u(rng);
-    p[3 * r + 1] = u(rng);
+    const int k = r % sh::BatchWidth;
+    if (neighbours && k == 0)
+    {
+      centre[0] = u(rng);
+      centre[1] = u(rng);
+    }
+    p[3 * r] = neighbours ? centre[0] + 0.02f * static_cast<float>(k % 4) : u(rng);
+    p[3 * r + 1] = neighbours ? centre[1] + 0.02f * static_cast<float>(k / 4) : u(rng);
     p[3 * r + 2] = 0.0f;
     n[3 * r] = n[3 * r + 1] = 0.0f;
     n[3 * r + 2] = 1.0f;
@@ -667,9 +678,17 @@ int main(int argc, char** argv)
         benchmark::RegisterBenchmark(("VisibilityBatch/" + target + "/order:" +
                                        std::to_string(order) + "/blockers:" + std::to_string(count))
                                        .c_str(),
-          BenchVisibilityBatch, order, count, target);
+          BenchVisibilityBatch, order, count, target, false);
       }
     }
+  }
+  // Neighbouring receivers, as the filter batches them: the best target.
+  for (int order : { 4, 6 })
+  {
+    benchmark::RegisterBenchmark(("VisibilityBatch/" + proxygi::sh::BatchTargets()[0] +
+                                   "/order:" + std::to_string(order) + "/blockers:256/neighbours")
+                                   .c_str(),
+      BenchVisibilityBatch, order, 256, proxygi::sh::BatchTargets()[0], true);
   }
   for (int order = 3; order <= 8; ++order)
   {
