@@ -12,8 +12,10 @@
  *    methods run the scalar Exp lane by lane);
  *  - BatchIndirectWeights: the averaged bounce's per-proxy cap weight and
  *    AveragedRadiances (IndirectExitRadiance's loop over proxies).
- * Results agree with the scalar kernels to float rounding (the vector code
- * fuses multiply-adds the scalar code rounds twice).
+ * Results equal the scalar kernels' bit for bit on every instruction set:
+ * no fused multiply-adds (the kernels' files are built with
+ * -ffp-contract=off) and each sum in the scalar code's order, since HYB's
+ * squarings double any difference per step.
  */
 #ifndef pgiSHBatch_h
 #define pgiSHBatch_h
