@@ -194,8 +194,9 @@ void BenchVisibilityBatch(
       centre[0] = u(rng);
       centre[1] = u(rng);
     }
-    p[3 * r] = neighbours ? centre[0] + 0.02f * static_cast<float>(k % 4) : u(rng);
-    p[3 * r + 1] = neighbours ? centre[1] + 0.02f * static_cast<float>(k / 4) : u(rng);
+    const int column = k % 4, row = k / 4; // in the 4 x 4 patch
+    p[3 * r] = neighbours ? centre[0] + 0.02f * static_cast<float>(column) : u(rng);
+    p[3 * r + 1] = neighbours ? centre[1] + 0.02f * static_cast<float>(row) : u(rng);
     p[3 * r + 2] = 0.0f;
     n[3 * r] = n[3 * r + 1] = 0.0f;
     n[3 * r + 2] = 1.0f;
