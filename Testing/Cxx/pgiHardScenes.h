@@ -25,8 +25,10 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -223,6 +225,35 @@ inline double HardPeak(vtkDataArray* a, double* lowest = nullptr)
     *lowest = low;
   }
   return peak;
+}
+/// The name of the first point array of `a` that differs from `b`'s in a
+/// single bit (or is missing there), or ""; arrays named in `skip` aside.
+inline std::string FirstDifference(
+  vtkPolyData* a, vtkPolyData* b, const std::vector<std::string>& skip = {})
+{
+  vtkPointData* pa = a->GetPointData();
+  vtkPointData* pb = b->GetPointData();
+  if (pa->GetNumberOfArrays() != pb->GetNumberOfArrays())
+  {
+    return "(number of arrays)";
+  }
+  for (int k = 0; k < pa->GetNumberOfArrays(); ++k)
+  {
+    vtkDataArray* x = pa->GetArray(k);
+    vtkDataArray* y = x ? pb->GetArray(x->GetName()) : nullptr;
+    if (!x || (x->GetName() && std::count(skip.begin(), skip.end(), x->GetName())))
+    {
+      continue;
+    }
+    if (!y || x->GetDataType() != y->GetDataType() ||
+      x->GetNumberOfValues() != y->GetNumberOfValues() ||
+      std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
+        static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) != 0)
+    {
+      return x->GetName() ? x->GetName() : "(unnamed)";
+    }
+  }
+  return std::string();
 }
 } // namespace pgitest
 

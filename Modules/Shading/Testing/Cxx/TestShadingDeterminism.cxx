@@ -54,34 +54,6 @@ vtkSmartPointer<vtkPolyData> Shade(
   return out;
 }
 
-// The name of the first array that differs in a single bit, or "".
-std::string FirstDifference(
-  vtkPolyData* a, vtkPolyData* b, const std::vector<std::string>& skip = {})
-{
-  vtkPointData* pa = a->GetPointData();
-  vtkPointData* pb = b->GetPointData();
-  if (pa->GetNumberOfArrays() != pb->GetNumberOfArrays())
-  {
-    return "(number of arrays)";
-  }
-  for (int k = 0; k < pa->GetNumberOfArrays(); ++k)
-  {
-    vtkDataArray* x = pa->GetArray(k);
-    vtkDataArray* y = x ? pb->GetArray(x->GetName()) : nullptr;
-    if (!x || (x->GetName() && std::count(skip.begin(), skip.end(), x->GetName())))
-    {
-      continue;
-    }
-    if (!y || x->GetDataType() != y->GetDataType() ||
-      x->GetNumberOfValues() != y->GetNumberOfValues() ||
-      std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
-        static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) != 0)
-    {
-      return x->GetName() ? x->GetName() : "(unnamed)";
-    }
-  }
-  return std::string();
-}
 } // namespace
 
 int TestShadingDeterminism(int, char*[])
@@ -128,7 +100,7 @@ int TestShadingDeterminism(int, char*[])
             ++identical;
             continue;
           }
-          const std::string differs = FirstDifference(first, out);
+          const std::string differs = pgitest::FirstDifference(first, out);
           if (differs.empty())
           {
             ++identical;
@@ -165,8 +137,8 @@ int TestShadingDeterminism(int, char*[])
     PGI_CHECK(doubles.Receivers->GetPoints()->GetDataType() == VTK_DOUBLE);
     vtkSMPTools::SetBackend(original.c_str());
     vtkSMPTools::Initialize(2);
-    const std::string differs =
-      FirstDifference(Shade(scene, lighting, true), Shade(doubles, lighting, true), { "Normals" });
+    const std::string differs = pgitest::FirstDifference(
+      Shade(scene, lighting, true), Shade(doubles, lighting, true), { "Normals" });
     std::printf("%s with double points and normals: %s\n", scene.Name.c_str(),
       differs.empty() ? "bit-identical" : ("'" + differs + "' differs").c_str());
     PGI_CHECK(differs.empty());
