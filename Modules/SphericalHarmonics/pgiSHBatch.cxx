@@ -4,7 +4,6 @@
 #define HWY_TARGET_INCLUDE "pgiSHBatch.cxx"
 #include "hwy/foreach_target.h" // IWYU pragma: keep
 
-#include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"
 
 #include "pgiSHBasis.h"
@@ -13,7 +12,6 @@
 #include "pgiSHTables.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <mutex>
