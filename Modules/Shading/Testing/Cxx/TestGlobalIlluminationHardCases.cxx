@@ -8,8 +8,8 @@
 // spheres show no jump in the total radiance; the scene at scale 1e-4 and
 // 1e4 gives the same radiance with the indirect light on. With the batched
 // (SIMD) kernels off every output array is the same, bit for bit: the
-// kernels round as the scalar code does (the 1000 proxies' shadowed bounce,
-// 3 s a run with them, is left out).
+// kernels round as the scalar code does (21 of the 24 runs: the 1000
+// proxies' shadowed bounce, 3 s a run, is left out).
 #include "vtkPGIGISettings.h"
 #include "vtkPGIGlobalIllumination.h"
 
@@ -117,7 +117,9 @@ int TestGlobalIlluminationHardCases(int, char*[])
       // above), on every receiver the input has.
       PGI_CHECK(radiance->GetNumberOfTuples() == openRadiance->GetNumberOfTuples());
       PGI_CHECK(pgitest::HardPeak(radiance) > 0.05 * pgitest::HardPeak(openRadiance));
-      if (seconds > 1.0)
+      // The 1000 proxies' shadowed bounce takes 3 s a run: not twice.
+      if (scene.Proxies->GetNumberOfPoints() >= 1000 &&
+        mode.IndirectMode == vtkPGIGISettings::INDIRECT_MODE_SHADOWED)
       {
         continue;
       }
